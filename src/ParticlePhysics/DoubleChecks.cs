@@ -1,0 +1,26 @@
+using System;
+using System.Runtime.CompilerServices;
+
+namespace ParticlePhysics;
+
+/// <summary>Finiteness tests over numbers and buffers (netstandard2.1 has no double.IsFinite on every runtime Unity ships).</summary>
+internal static class DoubleChecks
+{
+    /// <summary>True when <paramref name="value"/> is neither NaN nor infinite.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static bool IsFinite(double value) => (value - value) == 0.0;
+
+    /// <summary>The index of the first entry that is NaN or infinite, or -1 when all are finite.</summary>
+    public static int FirstNonFinite(ReadOnlySpan<double> values)
+    {
+        for (var i = 0; i < values.Length; i++)
+        {
+            if ((values[i] - values[i]) != 0.0)
+            {
+                return i;
+            }
+        }
+
+        return -1;
+    }
+}

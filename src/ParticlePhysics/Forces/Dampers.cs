@@ -1,0 +1,71 @@
+using System;
+
+namespace ParticlePhysics.Forces;
+
+/// <summary>
+/// Dashpots between pairs of particles, the course's "spring damping force": F_i = -c (v_i - v_j), F_j = -F_i.
+/// They resist relative motion in every direction, dissipate energy, and conserve total momentum.
+/// </summary>
+public sealed class Dampers : IForceGenerator, IBoundForce
+{
+    private readonly ForceElements _pairs = new(1);
+    private readonly ParticleSystem _system;
+
+    /// <summary>An empty set of dampers for the particles of <paramref name="system"/>.</summary>
+    public Dampers(ParticleSystem system)
+    {
+        Guard.NotNull(system, nameof(system));
+        _system = system;
+    }
+
+    /// <summary>The number of dampers.</summary>
+    public int Count => _pairs.Count;
+
+    ParticleSystem? IBoundForce.System => _system;
+
+    /// <summary>Adds a damper between two different existing particles.</summary>
+    /// <param name="first">One end (i).</param>
+    /// <param name="second">The other end (j).</param>
+    /// <param name="damping">c, in N s/m: a finite number &gt;= 0.</param>
+    /// <returns>The index of the new damper.</returns>
+    public int Add(int first, int second, double damping)
+    {
+        Guard.ParticleIndex(first, _system.Count, nameof(first));
+        Guard.ParticleIndex(second, _system.Count, nameof(second));
+        Guard.DistinctParticles(first, second, nameof(second));
+        Guard.NonNegativeFinite(damping, nameof(damping));
+        Span<double> p = stackalloc double[] { damping };
+        return _pairs.Add(first, second, p);
+    }
+
+    /// <summary>Changes the damping coefficient of a damper (a finite number &gt;= 0, in N s/m).</summary>
+    public void SetDamping(int damper, double damping)
+    {
+        _pairs.CheckIndex(damper, nameof(damper));
+        Guard.NonNegativeFinite(damping, nameof(damping));
+        _pairs.Parameters[damper] = damping;
+    }
+
+    /// <inheritdoc />
+    public void AddForces(in ParticleState state, Span<double> forces)
+    {
+        var v = state.Velocities;
+        var first = _pairs.First;
+        var second = _pairs.Second;
+        var c = _pairs.Parameters;
+        for (var s = 0; s < _pairs.Count; s++)
+        {
+            int a = 3 * first[s], b = 3 * second[s];
+            var cs = c[s];
+            var fx = -cs * (v[a] - v[b]);
+            var fy = -cs * (v[a + 1] - v[b + 1]);
+            var fz = -cs * (v[a + 2] - v[b + 2]);
+            forces[a] += fx;
+            forces[a + 1] += fy;
+            forces[a + 2] += fz;
+            forces[b] -= fx;
+            forces[b + 1] -= fy;
+            forces[b + 2] -= fz;
+        }
+    }
+}

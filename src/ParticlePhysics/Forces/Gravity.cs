@@ -1,0 +1,75 @@
+using System;
+
+namespace ParticlePhysics.Forces;
+
+/// <summary>
+/// Uniform gravity: F_i = m_i g on every particle, with g = (0, -9.81, 0) m/s^2 by default (y up).
+/// Potential energy: U = -sum m_i g . x_i.
+/// </summary>
+public sealed class Gravity : IForceGenerator, IPotentialEnergy
+{
+    /// <summary>Standard gravity, 9.81 m/s^2, as the course uses it.</summary>
+    public const double StandardAcceleration = 9.81;
+
+    private Vector3d _acceleration;
+
+    /// <summary>Gravity of <see cref="StandardAcceleration"/> pointing down (-y).</summary>
+    public Gravity()
+        : this(new Vector3d(0, -StandardAcceleration, 0))
+    {
+    }
+
+    /// <summary>Gravity with the given acceleration vector g, in m/s^2.</summary>
+    public Gravity(Vector3d acceleration)
+    {
+        Guard.Finite(acceleration, nameof(acceleration));
+        _acceleration = acceleration;
+    }
+
+    /// <summary>Gravity of magnitude <paramref name="g"/> m/s^2 pointing down (-y).</summary>
+    public static Gravity Down(double g)
+    {
+        Guard.NonNegativeFinite(g, nameof(g));
+        return new Gravity(new Vector3d(0, -g, 0));
+    }
+
+    /// <summary>The acceleration vector g, in m/s^2; can be changed between steps.</summary>
+    public Vector3d Acceleration
+    {
+        get => _acceleration;
+        set
+        {
+            Guard.Finite(value, nameof(Acceleration));
+            _acceleration = value;
+        }
+    }
+
+    /// <inheritdoc />
+    public void AddForces(in ParticleState state, Span<double> forces)
+    {
+        var masses = state.Masses;
+        double gx = _acceleration.X, gy = _acceleration.Y, gz = _acceleration.Z;
+        for (var i = 0; i < masses.Length; i++)
+        {
+            var m = masses[i];
+            forces[3 * i] += m * gx;
+            forces[(3 * i) + 1] += m * gy;
+            forces[(3 * i) + 2] += m * gz;
+        }
+    }
+
+    /// <inheritdoc />
+    public double PotentialEnergy(in ParticleState state)
+    {
+        var x = state.Positions;
+        var masses = state.Masses;
+        var sum = 0.0;
+        for (var i = 0; i < masses.Length; i++)
+        {
+            sum -= masses[i] * ((_acceleration.X * x[3 * i]) + (_acceleration.Y * x[(3 * i) + 1])
+                + (_acceleration.Z * x[(3 * i) + 2]));
+        }
+
+        return sum;
+    }
+}

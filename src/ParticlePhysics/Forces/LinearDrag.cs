@@ -1,0 +1,83 @@
+using System;
+using System.Collections.Generic;
+
+namespace ParticlePhysics.Forces;
+
+/// <summary>
+/// Linear (viscous) drag, the course's "frottements fluides": F_i = -lambda v_i, on every particle or on a chosen
+/// set. With gravity alone it gives the free fall of characteristic time tau = m / lambda.
+/// </summary>
+public sealed class LinearDrag : IForceGenerator, IBoundForce
+{
+    private readonly int[]? _particles;
+    private readonly ParticleSystem? _system;
+    private double _coefficient;
+
+    /// <summary>Drag on every particle of whichever system the generator is added to.</summary>
+    /// <param name="coefficient">lambda, in N s/m: a finite number &gt;= 0.</param>
+    public LinearDrag(double coefficient)
+    {
+        Guard.NonNegativeFinite(coefficient, nameof(coefficient));
+        _coefficient = coefficient;
+    }
+
+    /// <summary>Drag on the chosen particles of <paramref name="system"/> only.</summary>
+    /// <param name="coefficient">lambda, in N s/m: a finite number &gt;= 0.</param>
+    /// <param name="system">The particle system the indices refer to.</param>
+    /// <param name="particles">The particles to drag; each must exist in <paramref name="system"/>.</param>
+    public LinearDrag(double coefficient, ParticleSystem system, IEnumerable<int> particles)
+    {
+        Guard.NonNegativeFinite(coefficient, nameof(coefficient));
+        Guard.NotNull(system, nameof(system));
+        Guard.NotNull(particles, nameof(particles));
+        var list = new List<int>(particles);
+        foreach (var p in list)
+        {
+            Guard.ParticleIndex(p, system.Count, nameof(particles));
+        }
+
+        _coefficient = coefficient;
+        _system = system;
+        _particles = list.ToArray();
+    }
+
+    /// <summary>lambda, in N s/m; can be changed between steps (a finite number &gt;= 0).</summary>
+    public double Coefficient
+    {
+        get => _coefficient;
+        set
+        {
+            Guard.NonNegativeFinite(value, nameof(Coefficient));
+            _coefficient = value;
+        }
+    }
+
+    /// <summary>The particles dragged, or null when the drag acts on every particle.</summary>
+    public IReadOnlyList<int>? Particles => _particles;
+
+    ParticleSystem? IBoundForce.System => _system;
+
+    /// <inheritdoc />
+    public void AddForces(in ParticleState state, Span<double> forces)
+    {
+        var v = state.Velocities;
+        var lambda = _coefficient;
+        if (_particles is null)
+        {
+            for (var k = 0; k < v.Length; k++)
+            {
+                forces[k] -= lambda * v[k];
+            }
+
+            return;
+        }
+
+        foreach (var p in _particles)
+        {
+            var o = 3 * p;
+            forces[o] -= lambda * v[o];
+            forces[o + 1] -= lambda * v[o + 1];
+            forces[o + 2] -= lambda * v[o + 2];
+        }
+    }
+}

@@ -1,0 +1,135 @@
+using System;
+
+namespace ParticlePhysics.Forces;
+
+/// <summary>
+/// Hooke springs of zero rest length, the course's F = -k x: between particles i and j, F_i = -k (x_i - x_j) and
+/// F_j = -F_i; between particle i and a fixed anchor a, F_i = -k (x_i - a). The force is linear in the positions
+/// (which makes the mass-spring-damper exactly solvable). Potential energy: k |x_i - x_j|^2 / 2 per spring.
+/// </summary>
+public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoundForce
+{
+    // Pair parameters: k. Anchored parameters: ax, ay, az, k.
+    private readonly ForceElements _pairs = new(1);
+    private readonly ForceElements _anchored = new(4);
+    private readonly ParticleSystem _system;
+
+    /// <summary>An empty set of springs for the particles of <paramref name="system"/>.</summary>
+    public ZeroLengthSprings(ParticleSystem system)
+    {
+        Guard.NotNull(system, nameof(system));
+        _system = system;
+    }
+
+    /// <summary>The number of springs between two particles.</summary>
+    public int Count => _pairs.Count;
+
+    /// <summary>The number of springs between a particle and a fixed anchor.</summary>
+    public int AnchoredCount => _anchored.Count;
+
+    ParticleSystem? IBoundForce.System => _system;
+
+    /// <summary>Adds a spring between two different existing particles.</summary>
+    /// <param name="first">One end.</param>
+    /// <param name="second">The other end.</param>
+    /// <param name="stiffness">k, in N/m: a finite number &gt;= 0.</param>
+    /// <returns>The index of the new spring among the particle-particle springs.</returns>
+    public int Add(int first, int second, double stiffness)
+    {
+        Guard.ParticleIndex(first, _system.Count, nameof(first));
+        Guard.ParticleIndex(second, _system.Count, nameof(second));
+        Guard.DistinctParticles(first, second, nameof(second));
+        Guard.NonNegativeFinite(stiffness, nameof(stiffness));
+        Span<double> p = stackalloc double[] { stiffness };
+        return _pairs.Add(first, second, p);
+    }
+
+    /// <summary>Adds a spring between an existing particle and a fixed anchor point.</summary>
+    /// <param name="particle">The particle.</param>
+    /// <param name="anchor">The anchor's position, in metres (it has zero velocity).</param>
+    /// <param name="stiffness">k, in N/m: a finite number &gt;= 0.</param>
+    /// <returns>The index of the new spring among the anchored springs.</returns>
+    public int AddAnchored(int particle, Vector3d anchor, double stiffness)
+    {
+        Guard.ParticleIndex(particle, _system.Count, nameof(particle));
+        Guard.Finite(anchor, nameof(anchor));
+        Guard.NonNegativeFinite(stiffness, nameof(stiffness));
+        Span<double> p = stackalloc double[] { anchor.X, anchor.Y, anchor.Z, stiffness };
+        return _anchored.Add(particle, -1, p);
+    }
+
+    /// <summary>Changes the stiffness of a particle-particle spring.</summary>
+    public void SetStiffness(int spring, double stiffness)
+    {
+        _pairs.CheckIndex(spring, nameof(spring));
+        Guard.NonNegativeFinite(stiffness, nameof(stiffness));
+        _pairs.Parameters[spring] = stiffness;
+    }
+
+    /// <summary>Moves the anchor of an anchored spring (to attach a particle to a point that the host moves).</summary>
+    public void SetAnchor(int spring, Vector3d anchor)
+    {
+        _anchored.CheckIndex(spring, nameof(spring));
+        Guard.Finite(anchor, nameof(anchor));
+        _anchored.Parameters[4 * spring] = anchor.X;
+        _anchored.Parameters[(4 * spring) + 1] = anchor.Y;
+        _anchored.Parameters[(4 * spring) + 2] = anchor.Z;
+    }
+
+    /// <inheritdoc />
+    public void AddForces(in ParticleState state, Span<double> forces)
+    {
+        var x = state.Positions;
+        var first = _pairs.First;
+        var second = _pairs.Second;
+        var k = _pairs.Parameters;
+        for (var s = 0; s < _pairs.Count; s++)
+        {
+            int a = 3 * first[s], b = 3 * second[s];
+            var ks = k[s];
+            var fx = -ks * (x[a] - x[b]);
+            var fy = -ks * (x[a + 1] - x[b + 1]);
+            var fz = -ks * (x[a + 2] - x[b + 2]);
+            forces[a] += fx;
+            forces[a + 1] += fy;
+            forces[a + 2] += fz;
+            forces[b] -= fx;
+            forces[b + 1] -= fy;
+            forces[b + 2] -= fz;
+        }
+
+        var anchoredParticle = _anchored.First;
+        var p = _anchored.Parameters;
+        for (var s = 0; s < _anchored.Count; s++)
+        {
+            var a = 3 * anchoredParticle[s];
+            var ks = p[(4 * s) + 3];
+            forces[a] -= ks * (x[a] - p[4 * s]);
+            forces[a + 1] -= ks * (x[a + 1] - p[(4 * s) + 1]);
+            forces[a + 2] -= ks * (x[a + 2] - p[(4 * s) + 2]);
+        }
+    }
+
+    /// <inheritdoc />
+    public double PotentialEnergy(in ParticleState state)
+    {
+        var x = state.Positions;
+        var sum = 0.0;
+        for (var s = 0; s < _pairs.Count; s++)
+        {
+            int a = 3 * _pairs.First[s], b = 3 * _pairs.Second[s];
+            double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
+            sum += 0.5 * _pairs.Parameters[s] * ((dx * dx) + (dy * dy) + (dz * dz));
+        }
+
+        var p = _anchored.Parameters;
+        for (var s = 0; s < _anchored.Count; s++)
+        {
+            var a = 3 * _anchored.First[s];
+            double dx = x[a] - p[4 * s], dy = x[a + 1] - p[(4 * s) + 1], dz = x[a + 2] - p[(4 * s) + 2];
+            sum += 0.5 * p[(4 * s) + 3] * ((dx * dx) + (dy * dy) + (dz * dz));
+        }
+
+        return sum;
+    }
+}

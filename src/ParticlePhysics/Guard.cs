@@ -1,0 +1,79 @@
+using System;
+using System.Globalization;
+
+namespace ParticlePhysics;
+
+/// <summary>
+/// Argument checks shared by every public entry point. Each throws before anything is changed, with a message
+/// that names the parameter, the value received and what is allowed.
+/// </summary>
+internal static class Guard
+{
+    public static string Format(double value) => value.ToString("R", CultureInfo.InvariantCulture);
+
+    public static void PositiveFinite(double value, string name, string? hint = null)
+    {
+        if (!(value > 0.0) || !DoubleChecks.IsFinite(value))
+        {
+            throw new ArgumentOutOfRangeException(
+                name, value, $"{name} must be a positive finite number; got {Format(value)}.{Suffix(hint)}");
+        }
+    }
+
+    public static void NonNegativeFinite(double value, string name)
+    {
+        if (!(value >= 0.0) || !DoubleChecks.IsFinite(value))
+        {
+            throw new ArgumentOutOfRangeException(
+                name, value, $"{name} must be a finite number >= 0; got {Format(value)}.");
+        }
+    }
+
+    public static void Finite(double value, string name)
+    {
+        if (!DoubleChecks.IsFinite(value))
+        {
+            throw new ArgumentOutOfRangeException(name, value, $"{name} must be a finite number; got {Format(value)}.");
+        }
+    }
+
+    public static void Finite(Vector3d value, string name)
+    {
+        if (!value.IsFinite)
+        {
+            throw new ArgumentOutOfRangeException(
+                name, value, $"{name} must have finite components; got {value}.");
+        }
+    }
+
+    public static void Mass(double mass, string name) =>
+        PositiveFinite(mass, name, "Pin the particle to make it immovable.");
+
+    public static void ParticleIndex(int index, int count, string name)
+    {
+        if ((uint)index >= (uint)count)
+        {
+            throw new ArgumentOutOfRangeException(
+                name, index, $"{name} must name an existing particle, 0 to {count - 1}; got {index}.");
+        }
+    }
+
+    public static void DistinctParticles(int first, int second, string name)
+    {
+        if (first == second)
+        {
+            throw new ArgumentException(
+                $"A force element must join two different particles; both ends are particle {first}.", name);
+        }
+    }
+
+    public static void NotNull(object? value, string name)
+    {
+        if (value is null)
+        {
+            throw new ArgumentNullException(name);
+        }
+    }
+
+    private static string Suffix(string? hint) => hint is null ? string.Empty : " " + hint;
+}

@@ -1,0 +1,39 @@
+using System;
+using System.Collections.Generic;
+
+namespace ParticlePhysics.Integrators;
+
+/// <summary>
+/// The integrators by the names the demo's <c>--integrator</c> option and configuration files use.
+/// </summary>
+public static class IntegratorCatalog
+{
+    /// <summary>The default integrator's name.</summary>
+    public const string DefaultName = "rk4";
+
+    private static readonly string[] _names =
+    {
+        "explicit-euler", "semi-implicit-euler", "rk4", "velocity-verlet", "rk45",
+    };
+
+    /// <summary>The names that <see cref="Create"/> accepts.</summary>
+    public static IReadOnlyList<string> Names => _names;
+
+    /// <summary>True for the integrators that need a position/velocity system (<see cref="ISecondOrderSystem"/>).</summary>
+    public static bool NeedsSecondOrderSystem(string name) =>
+        name is "semi-implicit-euler" or "velocity-verlet";
+
+    /// <summary>Creates a new integrator (each owns its scratch buffers, so use one per system).</summary>
+    /// <param name="name">One of <see cref="Names"/>.</param>
+    /// <param name="tolerance">The error bound per step for <c>rk45</c>; ignored by the fixed-step integrators.</param>
+    public static IIntegrator Create(string name, double tolerance = 1e-8) => name switch
+    {
+        "explicit-euler" => new ExplicitEuler(),
+        "semi-implicit-euler" => new SemiImplicitEuler(),
+        "rk4" => new RungeKutta4(),
+        "velocity-verlet" => new VelocityVerlet(),
+        "rk45" => new DormandPrince45(tolerance),
+        _ => throw new ArgumentException(
+            $"Unknown integrator '{name}'; expected one of: {string.Join(", ", _names)}.", nameof(name)),
+    };
+}

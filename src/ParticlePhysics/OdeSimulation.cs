@@ -1,0 +1,66 @@
+using System;
+using ParticlePhysics.Integrators;
+
+namespace ParticlePhysics;
+
+/// <summary>
+/// The time loop for a plain <see cref="IOdeSystem"/> (such as the course's scalar example dy/dt = -2 y t):
+/// it owns the state vector and its time, and commits a step only when its result is finite.
+/// A <see cref="ParticleSystem"/> owns its state itself and has its own <see cref="ParticleSystem.Step"/>.
+/// </summary>
+public sealed class OdeSimulation
+{
+    private readonly double[] _state;
+    private readonly double[] _next;
+
+    /// <summary>Starts a simulation of <paramref name="system"/> from <paramref name="initialState"/> at <paramref name="initialTime"/>.</summary>
+    public OdeSimulation(IOdeSystem system, ReadOnlySpan<double> initialState, double initialTime = 0.0)
+    {
+        Guard.NotNull(system, nameof(system));
+        if (initialState.Length != system.Dimension)
+        {
+            throw new ArgumentException(
+                $"initialState must have the system's dimension {system.Dimension}; got {initialState.Length}.",
+                nameof(initialState));
+        }
+
+        var bad = DoubleChecks.FirstNonFinite(initialState);
+        if (bad >= 0)
+        {
+            throw new ArgumentException(
+                $"initialState must be finite; component {bad} is {Guard.Format(initialState[bad])}.", nameof(initialState));
+        }
+
+        Guard.Finite(initialTime, nameof(initialTime));
+        System = system;
+        _state = initialState.ToArray();
+        _next = new double[_state.Length];
+        Time = initialTime;
+    }
+
+    /// <summary>The system being integrated.</summary>
+    public IOdeSystem System { get; }
+
+    /// <summary>The current time, in seconds.</summary>
+    public double Time { get; private set; }
+
+    /// <summary>The current state vector.</summary>
+    public ReadOnlySpan<double> State => _state;
+
+    /// <summary>Advances by one step of <paramref name="dt"/> with <paramref name="integrator"/>.</summary>
+    /// <exception cref="SimulationDivergedException">The step's result is not finite; the state is left as it was.</exception>
+    public void Step(IIntegrator integrator, double dt)
+    {
+        Guard.NotNull(integrator, nameof(integrator));
+        Guard.PositiveFinite(dt, nameof(dt));
+        integrator.Step(System, Time, _state, _next, dt);
+        var bad = DoubleChecks.FirstNonFinite(_next);
+        if (bad >= 0)
+        {
+            throw new SimulationDivergedException(Time + dt, Time, bad, -1);
+        }
+
+        _next.AsSpan().CopyTo(_state);
+        Time += dt;
+    }
+}

@@ -1,0 +1,457 @@
+using System;
+using System.Collections.Generic;
+using System.Numerics;
+using ParticlePhysics.Integrators;
+
+namespace ParticlePhysics;
+
+/// <summary>
+/// The course's state vector of N point masses: positions and velocities in one flat buffer of 6 N doubles,
+/// laid out [x0 y0 z0 x1 ... | vx0 vy0 vz0 vx1 ...], a mass per particle, a force accumulator, pinned particles,
+/// and a list of force generators that can change at any time. It is an <see cref="IOdeSystem"/>
+/// (dy/dt = [v | F / m]) and an <see cref="ISecondOrderSystem"/>, so every integrator can advance it.
+/// </summary>
+/// <remarks>
+/// Positions first, then velocities (rather than interleaved per particle) so that integrators that treat the two
+/// differently work on two contiguous halves. While particles are being added, the buffer keeps spare capacity in
+/// each half; it is compacted to exactly 6 N values at the first step, so building a large cloth stays linear.
+/// A pinned particle has infinite mass (inverse mass 0) and zero velocity: every integrator leaves it exactly
+/// where it is. Stepping allocates nothing once the system and its integrator have been used once.
+/// </remarks>
+public sealed class ParticleSystem : ISecondOrderSystem
+{
+    private readonly List<IForceGenerator> _forceGenerators = new();
+    private double[] _state = Array.Empty<double>();
+    private double[] _masses = Array.Empty<double>();
+    private double[] _inverseMasses = Array.Empty<double>();
+    private bool[] _pinned = Array.Empty<bool>();
+    private double[] _forces = Array.Empty<double>();
+    private double[] _next = Array.Empty<double>();
+    private int _capacity;
+    private int _count;
+    private double _time;
+
+    /// <summary>Creates an empty particle system.</summary>
+    /// <param name="capacity">How many particles to make room for up front (optional).</param>
+    public ParticleSystem(int capacity = 0)
+    {
+        if (capacity < 0)
+        {
+            throw new ArgumentOutOfRangeException(nameof(capacity), capacity, $"capacity must be >= 0; got {capacity}.");
+        }
+
+        Reallocate(capacity);
+    }
+
+    /// <summary>The number of particles.</summary>
+    public int Count => _count;
+
+    /// <summary>The simulated time, in seconds: advanced by each <see cref="Step"/>.</summary>
+    public double Time
+    {
+        get => _time;
+        set
+        {
+            Guard.Finite(value, nameof(Time));
+            _time = value;
+        }
+    }
+
+    /// <summary>The dimension of the state vector: 6 values per particle.</summary>
+    public int Dimension => 6 * _count;
+
+    /// <summary>The number of position coordinates: 3 per particle.</summary>
+    public int CoordinateCount => 3 * _count;
+
+    /// <summary>The force generators, in the order they are evaluated.</summary>
+    public IReadOnlyList<IForceGenerator> Forces => _forceGenerators;
+
+    /// <summary>The positions, 3 values per particle (x0, y0, z0, x1, ...). Valid until the system next changes.</summary>
+    public ReadOnlySpan<double> Positions => _state.AsSpan(0, 3 * _count);
+
+    /// <summary>The velocities, 3 values per particle. Valid until the system next changes.</summary>
+    public ReadOnlySpan<double> Velocities => _state.AsSpan(3 * _capacity, 3 * _count);
+
+    /// <summary>The masses, one per particle (a pinned particle keeps its mass; it is its inverse that is 0).</summary>
+    public ReadOnlySpan<double> Masses => _masses.AsSpan(0, _count);
+
+    /// <summary>The inverse masses, one per particle: 1 / m, or 0 for a pinned particle.</summary>
+    public ReadOnlySpan<double> InverseMasses => _inverseMasses.AsSpan(0, _count);
+
+    /// <summary>
+    /// The whole state vector [positions | velocities], 6 values per particle: the buffer the integrators advance.
+    /// Valid until the system next changes.
+    /// </summary>
+    public ReadOnlySpan<double> State
+    {
+        get
+        {
+            Compact();
+            return _state.AsSpan(0, 6 * _count);
+        }
+    }
+
+    /// <summary>The forces of the last evaluation (3 values per particle), for inspection and debugging.</summary>
+    public ReadOnlySpan<double> LastForces => _forces.AsSpan(0, 3 * _count);
+
+    /// <summary>Adds a particle at rest.</summary>
+    /// <param name="position">Its position, in metres.</param>
+    /// <param name="mass">Its mass, a positive finite number of kilograms.</param>
+    /// <returns>The new particle's index (particles are numbered in creation order from 0).</returns>
+    public int AddParticle(Vector3d position, double mass) => AddParticle(position, Vector3d.Zero, mass);
+
+    /// <summary>Adds a particle.</summary>
+    /// <param name="position">Its position, in metres.</param>
+    /// <param name="velocity">Its velocity, in metres per second.</param>
+    /// <param name="mass">Its mass, a positive finite number of kilograms (pin it to make it immovable).</param>
+    /// <returns>The new particle's index (particles are numbered in creation order from 0).</returns>
+    public int AddParticle(Vector3d position, Vector3d velocity, double mass)
+    {
+        Guard.Finite(position, nameof(position));
+        Guard.Finite(velocity, nameof(velocity));
+        Guard.Mass(mass, nameof(mass));
+        if (_count == _capacity)
+        {
+            Reallocate(Math.Max(4, 2 * _capacity));
+        }
+
+        var index = _count++;
+        WritePosition(index, position);
+        WriteVelocity(index, velocity);
+        _masses[index] = mass;
+        _inverseMasses[index] = 1.0 / mass;
+        _pinned[index] = false;
+        return index;
+    }
+
+    /// <summary>The position of a particle, in metres.</summary>
+    public Vector3d GetPosition(int index)
+    {
+        Guard.ParticleIndex(index, _count, nameof(index));
+        return new Vector3d(_state[3 * index], _state[(3 * index) + 1], _state[(3 * index) + 2]);
+    }
+
+    /// <summary>Moves a particle (pinned particles too: this is how a host drags an attachment point).</summary>
+    public void SetPosition(int index, Vector3d position)
+    {
+        Guard.ParticleIndex(index, _count, nameof(index));
+        Guard.Finite(position, nameof(position));
+        WritePosition(index, position);
+    }
+
+    /// <summary>The velocity of a particle, in metres per second.</summary>
+    public Vector3d GetVelocity(int index)
+    {
+        Guard.ParticleIndex(index, _count, nameof(index));
+        var o = (3 * _capacity) + (3 * index);
+        return new Vector3d(_state[o], _state[o + 1], _state[o + 2]);
+    }
+
+    /// <summary>Sets the velocity of a free particle. A pinned particle's velocity is zero and stays zero.</summary>
+    public void SetVelocity(int index, Vector3d velocity)
+    {
+        Guard.ParticleIndex(index, _count, nameof(index));
+        Guard.Finite(velocity, nameof(velocity));
+        if (_pinned[index] && velocity != Vector3d.Zero)
+        {
+            throw new ArgumentException(
+                $"Particle {index} is pinned: its velocity is zero and cannot be set to {velocity}; unpin it first.",
+                nameof(velocity));
+        }
+
+        WriteVelocity(index, velocity);
+    }
+
+    /// <summary>The mass of a particle, in kilograms.</summary>
+    public double GetMass(int index)
+    {
+        Guard.ParticleIndex(index, _count, nameof(index));
+        return _masses[index];
+    }
+
+    /// <summary>Changes the mass of a particle (a positive finite number of kilograms).</summary>
+    public void SetMass(int index, double mass)
+    {
+        Guard.ParticleIndex(index, _count, nameof(index));
+        Guard.Mass(mass, nameof(mass));
+        _masses[index] = mass;
+        _inverseMasses[index] = _pinned[index] ? 0.0 : 1.0 / mass;
+    }
+
+    /// <summary>True when the particle is pinned (immovable).</summary>
+    public bool IsPinned(int index)
+    {
+        Guard.ParticleIndex(index, _count, nameof(index));
+        return _pinned[index];
+    }
+
+    /// <summary>
+    /// Pins a particle: it gets infinite mass and zero velocity, and no force or integrator moves it again
+    /// (only <see cref="SetPosition"/> does). Forces still see it, so springs pull their other ends toward it.
+    /// </summary>
+    public void Pin(int index)
+    {
+        Guard.ParticleIndex(index, _count, nameof(index));
+        _pinned[index] = true;
+        _inverseMasses[index] = 0.0;
+        WriteVelocity(index, Vector3d.Zero);
+    }
+
+    /// <summary>Frees a pinned particle: it moves again under the forces, with its own mass, starting at rest.</summary>
+    public void Unpin(int index)
+    {
+        Guard.ParticleIndex(index, _count, nameof(index));
+        _pinned[index] = false;
+        _inverseMasses[index] = 1.0 / _masses[index];
+    }
+
+    /// <summary>
+    /// Replaces the whole state vector [positions | velocities]. The values are checked first (all finite, pinned
+    /// particles at zero velocity): a rejected call changes nothing.
+    /// </summary>
+    public void SetState(ReadOnlySpan<double> state)
+    {
+        if (state.Length != Dimension)
+        {
+            throw new ArgumentException(
+                $"state must have 6 values per particle, {Dimension} in all; got {state.Length}.", nameof(state));
+        }
+
+        var bad = DoubleChecks.FirstNonFinite(state);
+        if (bad >= 0)
+        {
+            throw new ArgumentException(
+                $"state must be finite; value {bad} (particle {(bad % (3 * _count)) / 3}) is {Guard.Format(state[bad])}.",
+                nameof(state));
+        }
+
+        for (var i = 0; i < _count; i++)
+        {
+            var o = (3 * _count) + (3 * i);
+            if (_pinned[i] && (state[o] != 0.0 || state[o + 1] != 0.0 || state[o + 2] != 0.0))
+            {
+                throw new ArgumentException(
+                    $"Particle {i} is pinned, so its velocity in state must be zero.", nameof(state));
+            }
+        }
+
+        Compact();
+        state.CopyTo(_state);
+    }
+
+    /// <summary>Adds a force generator; it acts from the next evaluation on.</summary>
+    /// <exception cref="ArgumentException">The generator is already in this system, or names the particles of another one.</exception>
+    public void AddForce(IForceGenerator generator)
+    {
+        Guard.NotNull(generator, nameof(generator));
+        if (_forceGenerators.Contains(generator))
+        {
+            throw new ArgumentException("This force generator is already in the system.", nameof(generator));
+        }
+
+        if (generator is IBoundForce { System: { } owner } && !ReferenceEquals(owner, this))
+        {
+            throw new ArgumentException(
+                "This force generator was built for another particle system: its particle indices refer to that one.",
+                nameof(generator));
+        }
+
+        _forceGenerators.Add(generator);
+    }
+
+    /// <summary>Removes a force generator; returns false when it was not in the system.</summary>
+    public bool RemoveForce(IForceGenerator generator) => _forceGenerators.Remove(generator);
+
+    /// <summary>
+    /// Advances the system by one step of <paramref name="dt"/> seconds with <paramref name="integrator"/>.
+    /// The integrator writes into a scratch buffer; the result is committed only if it is finite.
+    /// </summary>
+    /// <exception cref="ArgumentOutOfRangeException"><paramref name="dt"/> is not a positive finite number.</exception>
+    /// <exception cref="SimulationDivergedException">
+    /// The step produced a value that is not finite; the system stays at its last finite state and time.
+    /// </exception>
+    public void Step(IIntegrator integrator, double dt)
+    {
+        Guard.NotNull(integrator, nameof(integrator));
+        Guard.PositiveFinite(dt, nameof(dt));
+        Compact();
+        var dimension = 6 * _count;
+        if (_next.Length != dimension)
+        {
+            _next = new double[dimension];
+        }
+
+        var current = _state.AsSpan(0, dimension);
+        integrator.Step(this, _time, current, _next, dt);
+        var bad = DoubleChecks.FirstNonFinite(_next);
+        if (bad >= 0)
+        {
+            throw new SimulationDivergedException(_time + dt, _time, bad, (bad % (3 * _count)) / 3);
+        }
+
+        _next.AsSpan().CopyTo(current);
+        _time += dt;
+    }
+
+    /// <summary>Writes dy/dt = [v | F / m] for the state <paramref name="state"/> at time <paramref name="time"/>.</summary>
+    public void Evaluate(double time, ReadOnlySpan<double> state, Span<double> derivative)
+    {
+        var n = 3 * _count;
+        if (state.Length != 2 * n || derivative.Length != 2 * n)
+        {
+            throw new ArgumentException(
+                $"state and derivative must have {2 * n} values; got {state.Length} and {derivative.Length}.");
+        }
+
+        var velocities = state.Slice(n, n);
+        velocities.CopyTo(derivative);
+        ComputeAccelerations(time, state.Slice(0, n), velocities, derivative.Slice(n, n));
+    }
+
+    /// <summary>Writes the accelerations F / m (0 for pinned particles) for the given positions and velocities.</summary>
+    public void ComputeAccelerations(
+        double time, ReadOnlySpan<double> positions, ReadOnlySpan<double> velocities, Span<double> accelerations)
+    {
+        var n = 3 * _count;
+        if (positions.Length != n || velocities.Length != n || accelerations.Length != n)
+        {
+            throw new ArgumentException(
+                $"positions, velocities and accelerations must have {n} values each.");
+        }
+
+        var forces = AccumulateForces(time, positions, velocities);
+        var inverseMasses = _inverseMasses;
+        for (var i = 0; i < _count; i++)
+        {
+            var w = inverseMasses[i];
+            var o = 3 * i;
+            accelerations[o] = forces[o] * w;
+            accelerations[o + 1] = forces[o + 1] * w;
+            accelerations[o + 2] = forces[o + 2] * w;
+        }
+    }
+
+    /// <summary>
+    /// Clears the force accumulator and lets every generator add into it, for the given positions and velocities.
+    /// Returns the accumulator (3 values per particle), valid until the next evaluation.
+    /// </summary>
+    public ReadOnlySpan<double> AccumulateForces(double time, ReadOnlySpan<double> positions, ReadOnlySpan<double> velocities)
+    {
+        var n = 3 * _count;
+        var forces = _forces.AsSpan(0, n);
+        forces.Clear();
+        var view = new ParticleState(time, positions, velocities, Masses, InverseMasses);
+        for (var g = 0; g < _forceGenerators.Count; g++)
+        {
+            _forceGenerators[g].AddForces(in view, forces);
+        }
+
+        return forces;
+    }
+
+    /// <summary>A view of the committed state for force generators and diagnostics.</summary>
+    public ParticleState View() => new(_time, Positions, Velocities, Masses, InverseMasses);
+
+    /// <summary>The total kinetic energy, sum of m v^2 / 2 over the particles, in joules.</summary>
+    public double KineticEnergy()
+    {
+        var v = Velocities;
+        var sum = 0.0;
+        for (var i = 0; i < _count; i++)
+        {
+            var o = 3 * i;
+            sum += 0.5 * _masses[i] * ((v[o] * v[o]) + (v[o + 1] * v[o + 1]) + (v[o + 2] * v[o + 2]));
+        }
+
+        return sum;
+    }
+
+    /// <summary>The sum of the potential energies of the generators that report one (<see cref="IPotentialEnergy"/>), in joules.</summary>
+    public double PotentialEnergy()
+    {
+        var view = View();
+        var sum = 0.0;
+        foreach (var generator in _forceGenerators)
+        {
+            if (generator is IPotentialEnergy potential)
+            {
+                sum += potential.PotentialEnergy(in view);
+            }
+        }
+
+        return sum;
+    }
+
+    /// <summary>The total linear momentum, sum of m v over the particles (pinned particles have v = 0).</summary>
+    public Vector3d TotalMomentum()
+    {
+        var v = Velocities;
+        double px = 0, py = 0, pz = 0;
+        for (var i = 0; i < _count; i++)
+        {
+            var o = 3 * i;
+            px += _masses[i] * v[o];
+            py += _masses[i] * v[o + 1];
+            pz += _masses[i] * v[o + 2];
+        }
+
+        return new Vector3d(px, py, pz);
+    }
+
+    /// <summary>
+    /// Writes the positions, rounded to single precision, into <paramref name="destination"/> (one vector per
+    /// particle): the layout a renderer's vertex buffer takes. Allocates nothing.
+    /// </summary>
+    public void CopyPositionsTo(Span<Vector3> destination)
+    {
+        if (destination.Length < _count)
+        {
+            throw new ArgumentException(
+                $"destination must hold at least {_count} vectors; it holds {destination.Length}.", nameof(destination));
+        }
+
+        var x = Positions;
+        for (var i = 0; i < _count; i++)
+        {
+            destination[i] = new Vector3((float)x[3 * i], (float)x[(3 * i) + 1], (float)x[(3 * i) + 2]);
+        }
+    }
+
+    private void WritePosition(int index, Vector3d p)
+    {
+        var o = 3 * index;
+        _state[o] = p.X;
+        _state[o + 1] = p.Y;
+        _state[o + 2] = p.Z;
+    }
+
+    private void WriteVelocity(int index, Vector3d v)
+    {
+        var o = (3 * _capacity) + (3 * index);
+        _state[o] = v.X;
+        _state[o + 1] = v.Y;
+        _state[o + 2] = v.Z;
+    }
+
+    /// <summary>Drops the spare capacity so that the state is exactly 6 N contiguous values.</summary>
+    private void Compact()
+    {
+        if (_capacity != _count)
+        {
+            Reallocate(_count);
+        }
+    }
+
+    private void Reallocate(int capacity)
+    {
+        var state = new double[6 * capacity];
+        Array.Copy(_state, 0, state, 0, 3 * _count);
+        Array.Copy(_state, 3 * _capacity, state, 3 * capacity, 3 * _count);
+        _state = state;
+        Array.Resize(ref _masses, capacity);
+        Array.Resize(ref _inverseMasses, capacity);
+        Array.Resize(ref _pinned, capacity);
+        Array.Resize(ref _forces, 3 * capacity);
+        _capacity = capacity;
+    }
+}

@@ -1,0 +1,51 @@
+using System;
+using System.Globalization;
+
+namespace ParticlePhysics;
+
+/// <summary>
+/// Thrown when a step produces a state that is not finite (NaN or infinite). The system is left at its last
+/// finite state and time, so the caller can retry with a smaller time step or a more stable integrator.
+/// </summary>
+public sealed class SimulationDivergedException : Exception
+{
+    /// <summary>Creates the exception for a failed step.</summary>
+    /// <param name="time">The time the failed step was to reach, in seconds.</param>
+    /// <param name="lastFiniteTime">The time of the last finite state, where the system was left.</param>
+    /// <param name="component">The index, in the state vector, of the first value that was not finite.</param>
+    /// <param name="particle">The particle that value belongs to, or -1 for a system that has no particles.</param>
+    public SimulationDivergedException(double time, double lastFiniteTime, int component, int particle)
+        : base(BuildMessage(time, lastFiniteTime, component, particle))
+    {
+        Time = time;
+        LastFiniteTime = lastFiniteTime;
+        Component = component;
+        Particle = particle;
+    }
+
+    /// <summary>The time the failed step was to reach, in seconds.</summary>
+    public double Time { get; }
+
+    /// <summary>The time of the last finite state, at which the system was left.</summary>
+    public double LastFiniteTime { get; }
+
+    /// <summary>The index in the state vector of the first value that was not finite.</summary>
+    public int Component { get; }
+
+    /// <summary>The particle whose position or velocity stopped being finite, or -1 for a system without particles.</summary>
+    public int Particle { get; }
+
+    private static string BuildMessage(double time, double lastFiniteTime, int component, int particle)
+    {
+        var what = particle >= 0
+            ? string.Format(CultureInfo.InvariantCulture, "particle {0}", particle)
+            : string.Format(CultureInfo.InvariantCulture, "state component {0}", component);
+        return string.Format(
+            CultureInfo.InvariantCulture,
+            "The simulation diverged at t={0:R}: {1} is no longer finite. The system was left at its last finite "
+            + "state, t={2:R}; retry with a smaller time step or a more stable integrator (implicit-euler).",
+            time,
+            what,
+            lastFiniteTime);
+    }
+}
