@@ -23,4 +23,21 @@ internal static class DoubleChecks
 
         return -1;
     }
+
+    /// <summary>
+    /// The index of the first entry that is NaN, infinite or larger than <paramref name="limit"/> in magnitude,
+    /// or -1 when all are within it. One comparison per value: NaN fails every comparison.
+    /// </summary>
+    public static int FirstBeyond(ReadOnlySpan<double> values, double limit)
+    {
+        for (var i = 0; i < values.Length; i++)
+        {
+            if (!(Math.Abs(values[i]) <= limit))
+            {
+                return i;
+            }
+        }
+
+        return -1;
+    }
 }

@@ -12,6 +12,7 @@ public sealed class OdeSimulation
 {
     private readonly double[] _state;
     private readonly double[] _next;
+    private double _divergenceLimit = double.MaxValue;
 
     /// <summary>Starts a simulation of <paramref name="system"/> from <paramref name="initialState"/> at <paramref name="initialTime"/>.</summary>
     public OdeSimulation(IOdeSystem system, ReadOnlySpan<double> initialState, double initialTime = 0.0)
@@ -47,17 +48,33 @@ public sealed class OdeSimulation
     /// <summary>The current state vector.</summary>
     public ReadOnlySpan<double> State => _state;
 
+    /// <summary>
+    /// The largest magnitude a state component may reach before a step counts as diverged. Default
+    /// <see cref="double.MaxValue"/>: only NaN and infinity stop a plain ODE, whose values may be of any scale.
+    /// </summary>
+    public double DivergenceLimit
+    {
+        get => _divergenceLimit;
+        set
+        {
+            Guard.PositiveFinite(value, nameof(DivergenceLimit));
+            _divergenceLimit = value;
+        }
+    }
+
     /// <summary>Advances by one step of <paramref name="dt"/> with <paramref name="integrator"/>.</summary>
-    /// <exception cref="SimulationDivergedException">The step's result is not finite; the state is left as it was.</exception>
+    /// <exception cref="SimulationDivergedException">
+    /// The step's result is not finite (or beyond <see cref="DivergenceLimit"/>); the state is left as it was.
+    /// </exception>
     public void Step(IIntegrator integrator, double dt)
     {
         Guard.NotNull(integrator, nameof(integrator));
         Guard.PositiveFinite(dt, nameof(dt));
         integrator.Step(System, Time, _state, _next, dt);
-        var bad = DoubleChecks.FirstNonFinite(_next);
+        var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
         if (bad >= 0)
         {
-            throw new SimulationDivergedException(Time + dt, Time, bad, -1);
+            throw new SimulationDivergedException(Time + dt, Time, bad, -1, _next[bad], _divergenceLimit);
         }
 
         _next.AsSpan().CopyTo(_state);

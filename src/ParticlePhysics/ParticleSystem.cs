@@ -30,6 +30,7 @@ public sealed class ParticleSystem : ISecondOrderSystem
     private int _capacity;
     private int _count;
     private double _time;
+    private double _divergenceLimit = DefaultDivergenceLimit;
 
     /// <summary>Creates an empty particle system.</summary>
     /// <param name="capacity">How many particles to make room for up front (optional).</param>
@@ -43,8 +44,28 @@ public sealed class ParticleSystem : ISecondOrderSystem
         Reallocate(capacity);
     }
 
+    /// <summary>The default <see cref="DivergenceLimit"/>: 1e12 (metres, metres per second).</summary>
+    public const double DefaultDivergenceLimit = 1e12;
+
     /// <summary>The number of particles.</summary>
     public int Count => _count;
+
+    /// <summary>
+    /// The largest magnitude a position or velocity coordinate may reach: a step that produces a larger value, NaN
+    /// or infinity throws <see cref="SimulationDivergedException"/> and is not committed. The default, 1e12 m and
+    /// m/s, is far beyond any game world or course scenario, yet catches a blow-up long before it overflows (an
+    /// unstable cloth passes 1e5 m within a quarter second but takes seconds more to reach infinity), so the state
+    /// left in place is one worth retrying from. Set <see cref="double.MaxValue"/> to stop only at non-finite values.
+    /// </summary>
+    public double DivergenceLimit
+    {
+        get => _divergenceLimit;
+        set
+        {
+            Guard.PositiveFinite(value, nameof(DivergenceLimit));
+            _divergenceLimit = value;
+        }
+    }
 
     /// <summary>The simulated time, in seconds: advanced by each <see cref="Step"/>.</summary>
     public double Time
@@ -268,7 +289,8 @@ public sealed class ParticleSystem : ISecondOrderSystem
     /// </summary>
     /// <exception cref="ArgumentOutOfRangeException"><paramref name="dt"/> is not a positive finite number.</exception>
     /// <exception cref="SimulationDivergedException">
-    /// The step produced a value that is not finite; the system stays at its last finite state and time.
+    /// The step produced a value that is not finite or beyond <see cref="DivergenceLimit"/>; the system stays at its
+    /// last good state and time.
     /// </exception>
     public void Step(IIntegrator integrator, double dt)
     {
@@ -283,10 +305,11 @@ public sealed class ParticleSystem : ISecondOrderSystem
 
         var current = _state.AsSpan(0, dimension);
         integrator.Step(this, _time, current, _next, dt);
-        var bad = DoubleChecks.FirstNonFinite(_next);
+        var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
         if (bad >= 0)
         {
-            throw new SimulationDivergedException(_time + dt, _time, bad, (bad % (3 * _count)) / 3);
+            throw new SimulationDivergedException(
+                _time + dt, _time, bad, (bad % (3 * _count)) / 3, _next[bad], _divergenceLimit);
         }
 
         _next.AsSpan().CopyTo(current);

@@ -4,8 +4,9 @@ using System.Globalization;
 namespace ParticlePhysics;
 
 /// <summary>
-/// Thrown when a step produces a state that is not finite (NaN or infinite). The system is left at its last
-/// finite state and time, so the caller can retry with a smaller time step or a more stable integrator.
+/// Thrown when a step produces a state that is not finite (NaN or infinite), or whose magnitude passes the
+/// system's divergence limit. The system is left at its last good state and time, so the caller can retry with a
+/// smaller time step or a more stable integrator.
 /// </summary>
 public sealed class SimulationDivergedException : Exception
 {
@@ -14,13 +15,17 @@ public sealed class SimulationDivergedException : Exception
     /// <param name="lastFiniteTime">The time of the last finite state, where the system was left.</param>
     /// <param name="component">The index, in the state vector, of the first value that was not finite.</param>
     /// <param name="particle">The particle that value belongs to, or -1 for a system that has no particles.</param>
-    public SimulationDivergedException(double time, double lastFiniteTime, int component, int particle)
-        : base(BuildMessage(time, lastFiniteTime, component, particle))
+    /// <param name="value">The offending value (NaN, infinite, or beyond <paramref name="limit"/>).</param>
+    /// <param name="limit">The divergence limit in force.</param>
+    public SimulationDivergedException(
+        double time, double lastFiniteTime, int component, int particle, double value, double limit)
+        : base(BuildMessage(time, lastFiniteTime, component, particle, value, limit))
     {
         Time = time;
         LastFiniteTime = lastFiniteTime;
         Component = component;
         Particle = particle;
+        Value = value;
     }
 
     /// <summary>The time the failed step was to reach, in seconds.</summary>
@@ -35,17 +40,25 @@ public sealed class SimulationDivergedException : Exception
     /// <summary>The particle whose position or velocity stopped being finite, or -1 for a system without particles.</summary>
     public int Particle { get; }
 
-    private static string BuildMessage(double time, double lastFiniteTime, int component, int particle)
+    /// <summary>The offending value: NaN, infinite, or finite but beyond the divergence limit.</summary>
+    public double Value { get; }
+
+    private static string BuildMessage(
+        double time, double lastFiniteTime, int component, int particle, double value, double limit)
     {
         var what = particle >= 0
             ? string.Format(CultureInfo.InvariantCulture, "particle {0}", particle)
             : string.Format(CultureInfo.InvariantCulture, "state component {0}", component);
+        var how = DoubleChecks.IsFinite(value)
+            ? string.Format(CultureInfo.InvariantCulture, "reached {0:R}, beyond the divergence limit {1:R}", value, limit)
+            : string.Format(CultureInfo.InvariantCulture, "is no longer finite ({0})", value);
         return string.Format(
             CultureInfo.InvariantCulture,
-            "The simulation diverged at t={0:R}: {1} is no longer finite. The system was left at its last finite "
-            + "state, t={2:R}; retry with a smaller time step or a more stable integrator (implicit-euler).",
+            "The simulation diverged at t={0:R}: {1} {2}. The system was left at its last good state, t={3:R}; "
+            + "retry with a smaller time step or a more stable integrator (implicit-euler).",
             time,
             what,
+            how,
             lastFiniteTime);
     }
 }

@@ -10,7 +10,8 @@ namespace ParticlePhysics.Integrators;
 /// <remarks>
 /// Seven stages k1..k7 with the Dormand-Prince tableau; y5 = y + h sum b_i k_i is kept, and the error estimate
 /// e = h sum (b_i - b*_i) k_i compares it with the embedded fourth-order solution. The scaled error
-/// err = sqrt(mean((e_i / (tol (1 + max(|y_i|, |y5_i|))))^2)) must be at most 1 for a step to be accepted; the
+/// err = max_i |e_i| / (tol (1 + max(|y_i|, |y5_i|))) must be at most 1 for a step to be accepted (a bound on
+/// every component, not an average that zero components would dilute); the
 /// next step size is h * clamp(0.9 err^(-1/5), 0.2, 5). The last stage is evaluated at the new state and is the
 /// next step's first (FSAL). Internal steps are shortened so that the interval ends exactly at t + dt.
 /// Stability: adaptive, so it follows the fastest time scale of the system; on a stiff cloth it takes many
@@ -190,16 +191,15 @@ public sealed class DormandPrince45 : IIntegrator
         }
 
         Evaluate(system, t + h, result, k7);
-        var sum = 0.0;
+        var error = 0.0;
         for (var i = 0; i < n; i++)
         {
             var e = h * ((E1 * k1[i]) + (E3 * k3[i]) + (E4 * k4[i]) + (E5 * k5[i]) + (E6 * k6[i]) + (E7 * k7[i]));
             var scale = _tolerance * (1.0 + Math.Max(Math.Abs(y[i]), Math.Abs(result[i])));
-            var r = e / scale;
-            sum += r * r;
+            var r = Math.Abs(e) / scale;
+            error = r > error || !DoubleChecks.IsFinite(r) ? r : error;
         }
 
-        var error = Math.Sqrt(sum / n);
         return DoubleChecks.IsFinite(error) ? error : double.PositiveInfinity;
     }
 
