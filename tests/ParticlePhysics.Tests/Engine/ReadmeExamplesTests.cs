@@ -1,0 +1,129 @@
+using System;
+using System.IO;
+using System.Runtime.CompilerServices;
+using System.Text.RegularExpressions;
+using ParticlePhysics.Forces;
+using ParticlePhysics.Integrators;
+
+namespace ParticlePhysics.Tests.Engine;
+
+/// <summary>
+/// The README's C# snippets are this file's code: each test runs the code, and a last test checks that every
+/// snippet in the README is, line for line, the region of this file with the same name.
+/// </summary>
+public partial class ReadmeExamplesTests
+{
+    [Fact]
+    public void Quickstart_runs_and_the_pendulum_hangs_below_its_pin()
+    {
+        // snippet: quickstart
+        var system = new ParticleSystem();
+        int pin = system.AddParticle(new Vector3d(0, 0, 0), mass: 1.0);
+        int bob = system.AddParticle(new Vector3d(1, 0, 0), mass: 0.5);
+        system.Pin(pin);
+
+        var springs = new SpringNetwork(system);
+        springs.Add(pin, bob, stiffness: 40, restLength: 1, damping: 0.5);
+        system.AddForce(springs);
+        system.AddForce(new Gravity());        // m (0, -9.81, 0) on every particle
+        system.AddForce(new LinearDrag(0.05)); // -lambda v
+
+        var rk4 = new RungeKutta4();
+        for (int step = 0; step < 6000; step++)
+        {
+            system.Step(rk4, 0.005);           // 30 s of simulated time
+        }
+
+        Console.WriteLine(system.GetPosition(bob)); // (~0, -1.1226, 0): hanging, spring stretched by m g / k
+        // end snippet
+
+        var hanging = system.GetPosition(bob);
+        Assert.Equal(0, hanging.X, 3);
+        Assert.Equal(-(1 + (0.5 * 9.81 / 40)), hanging.Y, 3);
+    }
+
+    [Fact]
+    public void Wind_force_from_the_readme_pushes_particles_downwind()
+    {
+        var system = new ParticleSystem();
+        system.AddParticle(Vector3d.Zero, 1.0);
+        system.AddForce(new Wind { AirVelocity = new Vector3d(5, 0, 0) });
+        system.Step(new RungeKutta4(), 0.1);
+        Assert.True(system.GetVelocity(0).X > 0);
+        Assert.Equal(0, system.GetVelocity(0).Y);
+    }
+
+    [Fact]
+    public void Every_readme_snippet_is_the_code_the_tests_run()
+    {
+        var readme = File.ReadAllText(Path.Combine(RepositoryRoot(), "README.md"));
+        var source = File.ReadAllText(ThisFile());
+        var blocks = ReadmeSnippet().Matches(readme);
+        Assert.Equal(2, blocks.Count);
+        foreach (Match block in blocks)
+        {
+            var name = block.Groups["name"].Value;
+            var region = Regex.Match(source, $@"// snippet: {name}\r?\n(?<code>.*?)\r?\n[ \t]*// end snippet", RegexOptions.Singleline);
+            Assert.True(region.Success, $"no region '{name}' in {ThisFile()}");
+            Assert.Equal(Dedent(region.Groups["code"].Value), Dedent(block.Groups["code"].Value));
+        }
+    }
+
+    internal static string RepositoryRoot()
+    {
+        var directory = Path.GetDirectoryName(ThisFile());
+        while (directory is not null && !File.Exists(Path.Combine(directory, "ParticlePhysics.sln")))
+        {
+            directory = Path.GetDirectoryName(directory);
+        }
+
+        return directory ?? throw new InvalidOperationException("ParticlePhysics.sln not found above " + ThisFile());
+    }
+
+    private static string ThisFile([CallerFilePath] string path = "") => path;
+
+    private static string Dedent(string code)
+    {
+        var lines = code.Replace("\r\n", "\n", StringComparison.Ordinal).Split('\n');
+        var indent = int.MaxValue;
+        foreach (var line in lines)
+        {
+            if (line.Trim().Length > 0)
+            {
+                indent = Math.Min(indent, line.Length - line.TrimStart().Length);
+            }
+        }
+
+        for (var i = 0; i < lines.Length; i++)
+        {
+            lines[i] = lines[i].Length >= indent ? lines[i][indent..].TrimEnd() : lines[i].Trim();
+        }
+
+        return string.Join("\n", lines).Trim();
+    }
+
+    [GeneratedRegex(@"<!-- snippet: (?<name>[a-z-]+) -->\s*```csharp\r?\n(?<code>.*?)```", RegexOptions.Singleline)]
+    private static partial Regex ReadmeSnippet();
+
+    // snippet: wind
+    /// <summary>A uniform wind: drag toward the air's velocity, F = c (w - v).</summary>
+    public sealed class Wind : IForceGenerator
+    {
+        public Vector3d AirVelocity { get; set; }
+
+        public double Coefficient { get; set; } = 0.02;
+
+        public void AddForces(in ParticleState state, Span<double> forces)
+        {
+            for (int i = 0; i < state.Count; i++)
+            {
+                var f = Coefficient * (AirVelocity - state.Velocity(i));
+                forces[3 * i] += f.X;
+                forces[(3 * i) + 1] += f.Y;
+                forces[(3 * i) + 2] += f.Z;
+            }
+        }
+    }
+
+    // end snippet
+}
