@@ -26,7 +26,7 @@ public partial class ReadmeExamplesTests
         springs.Add(pin, bob, stiffness: 40, restLength: 1, damping: 0.5);
         system.AddForce(springs);
         system.AddForce(new Gravity());        // m (0, -9.81, 0) on every particle
-        system.AddForce(new LinearDrag(0.05)); // -lambda v
+        system.AddForce(new LinearDrag(1.0));  // -lambda v: damps the swing as e^(-t)
 
         var rk4 = new RungeKutta4();
         for (int step = 0; step < 6000; step++)
