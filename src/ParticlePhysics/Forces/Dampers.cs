@@ -5,11 +5,13 @@ namespace ParticlePhysics.Forces;
 /// <summary>
 /// Dashpots between pairs of particles, the course's "spring damping force": F_i = -c (v_i - v_j), F_j = -F_i.
 /// They resist relative motion in every direction, dissipate energy, and conserve total momentum.
+/// Jacobian: df_i/dv_i = df_j/dv_j = -c I, df_i/dv_j = c I.
 /// </summary>
-public sealed class Dampers : IForceGenerator, IBoundForce
+public sealed class Dampers : IForceGenerator, IBoundForce, IForceJacobian
 {
     private readonly ForceElements _pairs = new(1);
     private readonly ParticleSystem _system;
+    private double _velocityScale;
 
     /// <summary>An empty set of dampers for the particles of <paramref name="system"/>.</summary>
     public Dampers(ParticleSystem system)
@@ -66,6 +68,43 @@ public sealed class Dampers : IForceGenerator, IBoundForce
             forces[b] -= fx;
             forces[b + 1] -= fy;
             forces[b + 2] -= fz;
+        }
+    }
+
+    /// <inheritdoc />
+    public void Linearize(
+        in ParticleState state, double positionScale, double velocityScale, Span<double> positionJacobianTimesVelocity)
+    {
+        _velocityScale = velocityScale;
+    }
+
+    /// <inheritdoc />
+    public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
+    {
+        var first = _pairs.First;
+        var second = _pairs.Second;
+        var c = _pairs.Parameters;
+        for (var s = 0; s < _pairs.Count; s++)
+        {
+            int a = 3 * first[s], b = 3 * second[s];
+            var cs = -c[s] * _velocityScale;
+            for (var k = 0; k < 3; k++)
+            {
+                var y = cs * (w[a + k] - w[b + k]);
+                result[a + k] += y;
+                result[b + k] -= y;
+            }
+        }
+    }
+
+    /// <inheritdoc />
+    public void AddDiagonalBlocks(Span<double> blocks)
+    {
+        for (var s = 0; s < _pairs.Count; s++)
+        {
+            var cs = -_pairs.Parameters[s] * _velocityScale;
+            JacobianBlocks.AddIsotropic(blocks, _pairs.First[s], cs);
+            JacobianBlocks.AddIsotropic(blocks, _pairs.Second[s], cs);
         }
     }
 }

@@ -4,9 +4,9 @@ namespace ParticlePhysics.Forces;
 
 /// <summary>
 /// Uniform gravity: F_i = m_i g on every particle, with g = (0, -9.81, 0) m/s^2 by default (y up).
-/// Potential energy: U = -sum m_i g . x_i.
+/// Potential energy: U = -sum m_i g . x_i. Its Jacobian is zero: implicit integrators treat it exactly.
 /// </summary>
-public sealed class Gravity : IForceGenerator, IPotentialEnergy
+public sealed class Gravity : IForceGenerator, IPotentialEnergy, IForceJacobian
 {
     /// <summary>Standard gravity, 9.81 m/s^2, as the course uses it.</summary>
     public const double StandardAcceleration = 9.81;
@@ -71,5 +71,22 @@ public sealed class Gravity : IForceGenerator, IPotentialEnergy
         }
 
         return sum;
+    }
+
+    /// <inheritdoc />
+    public void Linearize(
+        in ParticleState state, double positionScale, double velocityScale, Span<double> positionJacobianTimesVelocity)
+    {
+        // A uniform field: df/dx = df/dv = 0.
+    }
+
+    /// <inheritdoc />
+    public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
+    {
+    }
+
+    /// <inheritdoc />
+    public void AddDiagonalBlocks(Span<double> blocks)
+    {
     }
 }

@@ -6,12 +6,14 @@ namespace ParticlePhysics.Forces;
 /// <summary>
 /// Linear (viscous) drag, the course's "frottements fluides": F_i = -lambda v_i, on every particle or on a chosen
 /// set. With gravity alone it gives the free fall of characteristic time tau = m / lambda.
+/// Jacobian: df_i/dv_i = -lambda I (linear, so implicit Euler is exact backward Euler for it).
 /// </summary>
-public sealed class LinearDrag : IForceGenerator, IBoundForce
+public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
 {
     private readonly int[]? _particles;
     private readonly ParticleSystem? _system;
     private double _coefficient;
+    private double _linearized;
 
     /// <summary>Drag on every particle of whichever system the generator is added to.</summary>
     /// <param name="coefficient">lambda, in N s/m: a finite number &gt;= 0.</param>
@@ -78,6 +80,58 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce
             forces[o] -= lambda * v[o];
             forces[o + 1] -= lambda * v[o + 1];
             forces[o + 2] -= lambda * v[o + 2];
+        }
+    }
+
+    /// <inheritdoc />
+    public void Linearize(
+        in ParticleState state, double positionScale, double velocityScale, Span<double> positionJacobianTimesVelocity)
+    {
+        _linearized = -_coefficient * velocityScale;
+    }
+
+    /// <inheritdoc />
+    public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
+    {
+        var c = _linearized;
+        if (_particles is null)
+        {
+            for (var k = 0; k < w.Length; k++)
+            {
+                result[k] += c * w[k];
+            }
+
+            return;
+        }
+
+        foreach (var p in _particles)
+        {
+            var o = 3 * p;
+            result[o] += c * w[o];
+            result[o + 1] += c * w[o + 1];
+            result[o + 2] += c * w[o + 2];
+        }
+    }
+
+    /// <inheritdoc />
+    public void AddDiagonalBlocks(Span<double> blocks)
+    {
+        var c = _linearized;
+        if (_particles is null)
+        {
+            for (var b = 0; b < blocks.Length; b += 9)
+            {
+                blocks[b] += c;
+                blocks[b + 4] += c;
+                blocks[b + 8] += c;
+            }
+
+            return;
+        }
+
+        foreach (var p in _particles)
+        {
+            JacobianBlocks.AddIsotropic(blocks, p, c);
         }
     }
 }

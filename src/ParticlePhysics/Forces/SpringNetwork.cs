@@ -9,7 +9,14 @@ namespace ParticlePhysics.Forces;
 /// is zero (never NaN). Potential energy: k (l - L)^2 / 2 per spring. One generator holds a whole network
 /// (a cloth's thousands of springs) in flat arrays and is evaluated in one call.
 /// </summary>
-public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundForce
+/// <remarks>
+/// Jacobian (for implicit integration), per spring: df_i/dx_i = -k (t I + (1 - t) u u^T) with
+/// t = max(0, 1 - L / l), df_i/dv_i = -c u u^T, and df_i/dx_j = -df_i/dx_i, df_i/dv_j = -df_i/dv_i.
+/// The clamp of t keeps a compressed spring from making the implicit system indefinite (Baraff and Witkin 1998,
+/// Choi and Ko 2002); the position derivative of the damping term, which is not symmetric and vanishes when the
+/// ends move together, is left out. Each linearised spring is stored as u and two scalars, s I + t u u^T.
+/// </remarks>
+public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundForce, IForceJacobian
 {
     // Pair parameters: k, L, c. Anchored parameters: ax, ay, az, k, L, c.
     private const int PairStride = 3;
@@ -17,6 +24,11 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     private readonly ForceElements _pairs = new(PairStride);
     private readonly ForceElements _anchored = new(AnchoredStride);
     private readonly ParticleSystem _system;
+
+    // Linearisation, 5 values per spring: ux, uy, uz, s, t for the block s I + t u u^T.
+    private const int LinearStride = 5;
+    private double[] _linear = Array.Empty<double>();
+    private double[] _anchoredLinear = Array.Empty<double>();
 
     /// <summary>An empty network for the particles of <paramref name="system"/>.</summary>
     public SpringNetwork(ParticleSystem system)
@@ -97,43 +109,49 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     }
 
     /// <inheritdoc />
-    public void AddForces(in ParticleState state, Span<double> forces)
+    public unsafe void AddForces(in ParticleState state, Span<double> forces)
     {
-        var x = state.Positions;
-        var v = state.Velocities;
-        var first = _pairs.First;
-        var second = _pairs.Second;
-        var p = _pairs.Parameters;
-        for (var s = 0; s < _pairs.Count; s++)
-        {
-            int a = 3 * first[s], b = 3 * second[s], q = PairStride * s;
-            double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
-            var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
-            if (lengthSquared == 0.0)
-            {
-                continue;
-            }
+        CheckSizes(state.Positions.Length, state.Velocities.Length, forces.Length);
 
-            var length = Math.Sqrt(lengthSquared);
-            var inverse = 1.0 / length;
-            double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
-            var closing = ((v[a] - v[b]) * ux) + ((v[a + 1] - v[b + 1]) * uy) + ((v[a + 2] - v[b + 2]) * uz);
-            var magnitude = (p[q] * (length - p[q + 1])) + (p[q + 2] * closing);
-            double fx = magnitude * ux, fy = magnitude * uy, fz = magnitude * uz;
-            forces[a] -= fx;
-            forces[a + 1] -= fy;
-            forces[a + 2] -= fz;
-            forces[b] += fx;
-            forces[b + 1] += fy;
-            forces[b + 2] += fz;
+        // The hot loop of every explicit step: pointers, because each spring gathers and scatters by index and the
+        // bounds check of every access would otherwise cost as much as the arithmetic.
+        fixed (double* x = state.Positions, v = state.Velocities, f = forces, p = _pairs.Parameters)
+        fixed (int* first = _pairs.First, second = _pairs.Second)
+        {
+            for (var s = 0; s < _pairs.Count; s++)
+            {
+                int a = 3 * first[s], b = 3 * second[s];
+                var q = p + (PairStride * s);
+                double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
+                var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
+                if (lengthSquared == 0.0)
+                {
+                    continue;
+                }
+
+                var length = Math.Sqrt(lengthSquared);
+                var inverse = 1.0 / length;
+                double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
+                var closing = ((v[a] - v[b]) * ux) + ((v[a + 1] - v[b + 1]) * uy) + ((v[a + 2] - v[b + 2]) * uz);
+                var magnitude = (q[0] * (length - q[1])) + (q[2] * closing);
+                double fx = magnitude * ux, fy = magnitude * uy, fz = magnitude * uz;
+                f[a] -= fx;
+                f[a + 1] -= fy;
+                f[a + 2] -= fz;
+                f[b] += fx;
+                f[b + 1] += fy;
+                f[b + 2] += fz;
+            }
         }
 
+        var x0 = state.Positions;
+        var v0 = state.Velocities;
         var particle = _anchored.First;
         var r = _anchored.Parameters;
         for (var s = 0; s < _anchored.Count; s++)
         {
             int a = 3 * particle[s], q = AnchoredStride * s;
-            double dx = x[a] - r[q], dy = x[a + 1] - r[q + 1], dz = x[a + 2] - r[q + 2];
+            double dx = x0[a] - r[q], dy = x0[a + 1] - r[q + 1], dz = x0[a + 2] - r[q + 2];
             var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
             if (lengthSquared == 0.0)
             {
@@ -143,7 +161,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             var length = Math.Sqrt(lengthSquared);
             var inverse = 1.0 / length;
             double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
-            var closing = (v[a] * ux) + (v[a + 1] * uy) + (v[a + 2] * uz);
+            var closing = (v0[a] * ux) + (v0[a + 1] * uy) + (v0[a + 2] * uz);
             var magnitude = (r[q + 3] * (length - r[q + 4])) + (r[q + 5] * closing);
             forces[a] -= magnitude * ux;
             forces[a + 1] -= magnitude * uy;
@@ -176,10 +194,169 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         return sum;
     }
 
+    /// <summary>
+    /// The pointer loops trust that every index stored is below the particle count, which Add checked against the
+    /// system; this checks, once per call, that the buffers are the system's size.
+    /// </summary>
+    private void CheckSizes(int positions, int velocities, int result)
+    {
+        var needed = 3 * _system.Count;
+        if (positions < needed || velocities < needed || result < needed)
+        {
+            throw new ArgumentException(
+                $"SpringNetwork needs buffers of {needed} values (3 per particle of its system); got {positions}, {velocities} and {result}.");
+        }
+    }
+
     private static void CheckParameters(double stiffness, double restLength, double damping)
     {
         Guard.NonNegativeFinite(stiffness, nameof(stiffness));
         Guard.NonNegativeFinite(restLength, nameof(restLength));
         Guard.NonNegativeFinite(damping, nameof(damping));
+    }
+
+    /// <inheritdoc />
+    public void Linearize(
+        in ParticleState state, double positionScale, double velocityScale, Span<double> positionJacobianTimesVelocity)
+    {
+        if (_linear.Length < LinearStride * _pairs.Count)
+        {
+            _linear = new double[LinearStride * _pairs.First.Length];
+        }
+
+        if (_anchoredLinear.Length < LinearStride * _anchored.Count)
+        {
+            _anchoredLinear = new double[LinearStride * _anchored.First.Length];
+        }
+
+        var x = state.Positions;
+        var v = state.Velocities;
+        var p = _pairs.Parameters;
+        for (var s = 0; s < _pairs.Count; s++)
+        {
+            int a = 3 * _pairs.First[s], b = 3 * _pairs.Second[s], q = PairStride * s;
+            var (k, iso) = LinearizeOne(
+                x[a] - x[b], x[a + 1] - x[b + 1], x[a + 2] - x[b + 2], p[q], p[q + 1], p[q + 2],
+                positionScale, velocityScale, _linear.AsSpan(LinearStride * s, LinearStride));
+            AddPositionTerm(_linear.AsSpan(LinearStride * s, LinearStride), k, iso,
+                v[a] - v[b], v[a + 1] - v[b + 1], v[a + 2] - v[b + 2], positionJacobianTimesVelocity, a, b);
+        }
+
+        var r = _anchored.Parameters;
+        for (var s = 0; s < _anchored.Count; s++)
+        {
+            int a = 3 * _anchored.First[s], q = AnchoredStride * s;
+            var (k, iso) = LinearizeOne(
+                x[a] - r[q], x[a + 1] - r[q + 1], x[a + 2] - r[q + 2], r[q + 3], r[q + 4], r[q + 5],
+                positionScale, velocityScale, _anchoredLinear.AsSpan(LinearStride * s, LinearStride));
+            AddPositionTerm(_anchoredLinear.AsSpan(LinearStride * s, LinearStride), k, iso,
+                v[a], v[a + 1], v[a + 2], positionJacobianTimesVelocity, a, -1);
+        }
+    }
+
+    /// <inheritdoc />
+    public unsafe void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
+    {
+        CheckSizes(w.Length, w.Length, result.Length);
+
+        // The hot loop of every conjugate-gradient iteration: pointers for the same reason as in AddForces.
+        fixed (double* wp = w, y = result, lin = _linear)
+        fixed (int* first = _pairs.First, second = _pairs.Second)
+        {
+            for (var s = 0; s < _pairs.Count; s++)
+            {
+                int a = 3 * first[s], b = 3 * second[s];
+                var q = lin + (LinearStride * s);
+                double dx = wp[a] - wp[b], dy = wp[a + 1] - wp[b + 1], dz = wp[a + 2] - wp[b + 2];
+                double ux = q[0], uy = q[1], uz = q[2], iso = q[3];
+                var axial = q[4] * ((ux * dx) + (uy * dy) + (uz * dz));
+                double yx = (iso * dx) + (axial * ux), yy = (iso * dy) + (axial * uy), yz = (iso * dz) + (axial * uz);
+                y[a] += yx;
+                y[a + 1] += yy;
+                y[a + 2] += yz;
+                y[b] -= yx;
+                y[b + 1] -= yy;
+                y[b + 2] -= yz;
+            }
+        }
+
+        var anchoredLin = _anchoredLinear;
+        for (var s = 0; s < _anchored.Count; s++)
+        {
+            int a = 3 * _anchored.First[s], q = LinearStride * s;
+            double dx = w[a], dy = w[a + 1], dz = w[a + 2];
+            double ux = anchoredLin[q], uy = anchoredLin[q + 1], uz = anchoredLin[q + 2], iso = anchoredLin[q + 3];
+            var axial = anchoredLin[q + 4] * ((ux * dx) + (uy * dy) + (uz * dz));
+            result[a] += (iso * dx) + (axial * ux);
+            result[a + 1] += (iso * dy) + (axial * uy);
+            result[a + 2] += (iso * dz) + (axial * uz);
+        }
+    }
+
+    /// <inheritdoc />
+    public void AddDiagonalBlocks(Span<double> blocks)
+    {
+        for (var s = 0; s < _pairs.Count; s++)
+        {
+            var q = LinearStride * s;
+            double ux = _linear[q], uy = _linear[q + 1], uz = _linear[q + 2], iso = _linear[q + 3], t = _linear[q + 4];
+            JacobianBlocks.Add(blocks, _pairs.First[s], iso, t, ux, uy, uz);
+            JacobianBlocks.Add(blocks, _pairs.Second[s], iso, t, ux, uy, uz);
+        }
+
+        for (var s = 0; s < _anchored.Count; s++)
+        {
+            var q = LinearStride * s;
+            JacobianBlocks.Add(
+                blocks, _anchored.First[s], _anchoredLinear[q + 3], _anchoredLinear[q + 4],
+                _anchoredLinear[q], _anchoredLinear[q + 1], _anchoredLinear[q + 2]);
+        }
+    }
+
+    /// <summary>
+    /// Writes (ux, uy, uz, s, t) with a df/dx + b df/dv = s I + t u u^T for one spring of separation d; returns
+    /// the position-only parts -k (transverse I + (1 - transverse) u u^T) as (k times (1 - transverse), k transverse).
+    /// </summary>
+    private static (double Axial, double Isotropic) LinearizeOne(
+        double dx, double dy, double dz, double k, double restLength, double c, double a, double b, Span<double> into)
+    {
+        var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
+        if (lengthSquared == 0.0)
+        {
+            // No direction: a zero-rest-length spring is still -k I; a spring with a rest length exerts no force here.
+            var isotropic = restLength == 0.0 ? k : 0.0;
+            into[0] = into[1] = into[2] = into[4] = 0.0;
+            into[3] = -a * isotropic;
+            return (0.0, isotropic);
+        }
+
+        var length = Math.Sqrt(lengthSquared);
+        var inverse = 1.0 / length;
+        var transverse = Math.Max(0.0, 1.0 - (restLength * inverse));
+        into[0] = dx * inverse;
+        into[1] = dy * inverse;
+        into[2] = dz * inverse;
+        into[3] = -a * k * transverse;
+        into[4] = -((a * k * (1.0 - transverse)) + (b * c));
+        return (k * (1.0 - transverse), k * transverse);
+    }
+
+    /// <summary>Adds df/dx (v_i - v_j) = -(iso dv + axial (u . dv) u) at end a, its opposite at end b.</summary>
+    private static void AddPositionTerm(
+        ReadOnlySpan<double> linear, double axial, double iso, double dvx, double dvy, double dvz, Span<double> into, int a, int b)
+    {
+        var along = axial * ((linear[0] * dvx) + (linear[1] * dvy) + (linear[2] * dvz));
+        double yx = -((iso * dvx) + (along * linear[0]));
+        double yy = -((iso * dvy) + (along * linear[1]));
+        double yz = -((iso * dvz) + (along * linear[2]));
+        into[a] += yx;
+        into[a + 1] += yy;
+        into[a + 2] += yz;
+        if (b >= 0)
+        {
+            into[b] -= yx;
+            into[b + 1] -= yy;
+            into[b + 2] -= yz;
+        }
     }
 }

@@ -6,13 +6,15 @@ namespace ParticlePhysics.Forces;
 /// Hooke springs of zero rest length, the course's F = -k x: between particles i and j, F_i = -k (x_i - x_j) and
 /// F_j = -F_i; between particle i and a fixed anchor a, F_i = -k (x_i - a). The force is linear in the positions
 /// (which makes the mass-spring-damper exactly solvable). Potential energy: k |x_i - x_j|^2 / 2 per spring.
+/// Jacobian: df_i/dx_i = -k I, df_i/dx_j = k I (constant, so implicit Euler is exact backward Euler for it).
 /// </summary>
-public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoundForce
+public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoundForce, IForceJacobian
 {
     // Pair parameters: k. Anchored parameters: ax, ay, az, k.
     private readonly ForceElements _pairs = new(1);
     private readonly ForceElements _anchored = new(4);
     private readonly ParticleSystem _system;
+    private double _positionScale;
 
     /// <summary>An empty set of springs for the particles of <paramref name="system"/>.</summary>
     public ZeroLengthSprings(ParticleSystem system)
@@ -131,5 +133,76 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
         }
 
         return sum;
+    }
+
+    /// <inheritdoc />
+    public void Linearize(
+        in ParticleState state, double positionScale, double velocityScale, Span<double> positionJacobianTimesVelocity)
+    {
+        _positionScale = positionScale;
+        var v = state.Velocities;
+        for (var s = 0; s < _pairs.Count; s++)
+        {
+            int a = 3 * _pairs.First[s], b = 3 * _pairs.Second[s];
+            var k = _pairs.Parameters[s];
+            for (var c = 0; c < 3; c++)
+            {
+                var y = -k * (v[a + c] - v[b + c]);
+                positionJacobianTimesVelocity[a + c] += y;
+                positionJacobianTimesVelocity[b + c] -= y;
+            }
+        }
+
+        for (var s = 0; s < _anchored.Count; s++)
+        {
+            var a = 3 * _anchored.First[s];
+            var k = _anchored.Parameters[(4 * s) + 3];
+            for (var c = 0; c < 3; c++)
+            {
+                positionJacobianTimesVelocity[a + c] -= k * v[a + c];
+            }
+        }
+    }
+
+    /// <inheritdoc />
+    public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
+    {
+        for (var s = 0; s < _pairs.Count; s++)
+        {
+            int a = 3 * _pairs.First[s], b = 3 * _pairs.Second[s];
+            var k = -_pairs.Parameters[s] * _positionScale;
+            for (var c = 0; c < 3; c++)
+            {
+                var y = k * (w[a + c] - w[b + c]);
+                result[a + c] += y;
+                result[b + c] -= y;
+            }
+        }
+
+        for (var s = 0; s < _anchored.Count; s++)
+        {
+            var a = 3 * _anchored.First[s];
+            var k = -_anchored.Parameters[(4 * s) + 3] * _positionScale;
+            for (var c = 0; c < 3; c++)
+            {
+                result[a + c] += k * w[a + c];
+            }
+        }
+    }
+
+    /// <inheritdoc />
+    public void AddDiagonalBlocks(Span<double> blocks)
+    {
+        for (var s = 0; s < _pairs.Count; s++)
+        {
+            var k = -_pairs.Parameters[s] * _positionScale;
+            JacobianBlocks.AddIsotropic(blocks, _pairs.First[s], k);
+            JacobianBlocks.AddIsotropic(blocks, _pairs.Second[s], k);
+        }
+
+        for (var s = 0; s < _anchored.Count; s++)
+        {
+            JacobianBlocks.AddIsotropic(blocks, _anchored.First[s], -_anchored.Parameters[(4 * s) + 3] * _positionScale);
+        }
     }
 }

@@ -13,7 +13,7 @@ public static class IntegratorCatalog
 
     private static readonly string[] _names =
     {
-        "explicit-euler", "semi-implicit-euler", "rk4", "velocity-verlet", "rk45",
+        "explicit-euler", "semi-implicit-euler", "implicit-euler", "rk4", "velocity-verlet", "rk45",
     };
 
     /// <summary>The names that <see cref="Create"/> accepts.</summary>
@@ -30,6 +30,7 @@ public static class IntegratorCatalog
     {
         "explicit-euler" => new ExplicitEuler(),
         "semi-implicit-euler" => new SemiImplicitEuler(),
+        "implicit-euler" => new ImplicitEuler(),
         "rk4" => new RungeKutta4(),
         "velocity-verlet" => new VelocityVerlet(),
         "rk45" => new DormandPrince45(tolerance),

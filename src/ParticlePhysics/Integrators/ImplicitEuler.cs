@@ -1,0 +1,479 @@
+using System;
+using System.Collections.Generic;
+
+namespace ParticlePhysics.Integrators;
+
+/// <summary>
+/// Implicit (backward) Euler: x and v at t + h from the forces at t + h. Unconditionally stable, and dissipative:
+/// it keeps a stiff cloth stable at one step per 60 Hz frame where explicit methods blow up.
+/// </summary>
+/// <remarks>
+/// Backward Euler: v1 = v0 + h M^-1 f(x1, v1), x1 = x0 + h v1. For a particle system the force is linearised once
+/// per step (Baraff and Witkin, "Large Steps in Cloth Simulation", 1998): with f(x0 + dx, v0 + dv) ~ f0 + K dx + D dv,
+/// K = df/dx, D = df/dv and dx = h (v0 + dv), the update dv solves
+/// (M - h D - h^2 K) dv = h (f0 + h K v0); then v1 = v0 + dv and x1 = x0 + h v1.
+/// The matrix is symmetric positive definite when K and D are symmetric negative semi-definite (springs clamp their
+/// compressed transverse stiffness for that); it is solved matrix-free by conjugate gradients with a 3 x 3
+/// block-Jacobi preconditioner, pinned particles filtered out (their dv is 0). For forces that are linear in x and v
+/// (zero-rest-length springs, drag, dampers, gravity) the linearisation is exact and so is the step (up to the
+/// solver's tolerance). For free fall with drag it is the course's v(i+1) = (v(i) - g h) / (1 + h / tau).
+/// For a plain <see cref="IOdeSystem"/>, y1 = y0 + h f(t + h, y1) is solved by Newton's method with a
+/// finite-difference Jacobian and a dense LU factorisation (fine for small systems such as the course's scalar ODE).
+/// Order 1. Stability: the whole left half-plane (A-stable), so any h is stable on a damped linear system.
+/// </remarks>
+public sealed class ImplicitEuler : IIntegrator
+{
+    private readonly Dictionary<IForceGenerator, FiniteDifferenceJacobian> _finiteDifference = new();
+    /// <summary>Newton's method on a plain ODE stops when its update is this small relative to 1 + |y|.</summary>
+    private const double NewtonTolerance = 1e-12;
+
+    private readonly List<IForceJacobian> _jacobians = new();
+    private double _tolerance = 1e-6;
+    private int _maxIterations = 200;
+    private bool _warm;
+
+    // Particle-system path: 3 N values each, except the 9 N preconditioner blocks.
+    private double[]? _force;
+    private double[]? _rhs;
+    private double[]? _dv;
+    private double[]? _residual;
+    private double[]? _direction;
+    private double[]? _product;
+    private double[]? _preconditioned;
+    private double[]? _jacobianProduct;
+    private double[]? _blocks;
+
+    // Plain-ODE path.
+    private double[]? _newtonY;
+    private double[]? _newtonF;
+    private double[]? _newtonFShifted;
+    private double[]? _newtonMatrix;
+    private double[]? _newtonDelta;
+    private int[]? _pivots;
+
+    /// <inheritdoc />
+    public string Name => "implicit-euler";
+
+    /// <inheritdoc />
+    public int Order => 1;
+
+    /// <summary>
+    /// The relative tolerance of the linear solve: conjugate gradients stop when the residual's norm is at most this
+    /// fraction of the right-hand side's (default 1e-6). (Newton's method on a plain ODE iterates to 1e-12.)
+    /// </summary>
+    public double Tolerance
+    {
+        get => _tolerance;
+        set
+        {
+            Guard.PositiveFinite(value, nameof(Tolerance));
+            _tolerance = value;
+        }
+    }
+
+    /// <summary>The most conjugate-gradient (or Newton) iterations per step (default 200).</summary>
+    public int MaxIterations
+    {
+        get => _maxIterations;
+        set
+        {
+            if (value < 1)
+            {
+                throw new ArgumentOutOfRangeException(
+                    nameof(MaxIterations), value, $"MaxIterations must be at least 1; got {value}.");
+            }
+
+            _maxIterations = value;
+        }
+    }
+
+    /// <summary>
+    /// When true, a step whose solve does not reach <see cref="Tolerance"/> within <see cref="MaxIterations"/>
+    /// throws <see cref="SolverNotConvergedException"/> (and the system is not advanced). When false (the default)
+    /// the step ends with the solver's best solution, and <see cref="LastConverged"/> says it fell short.
+    /// </summary>
+    public bool ThrowIfNotConverged { get; set; }
+
+    /// <summary>Whether the solve starts from the previous step's velocity change (default true).</summary>
+    public bool WarmStart { get; set; } = true;
+
+    /// <summary>How force generators without a Jacobian (<see cref="IForceJacobian"/>) are treated (default explicitly).</summary>
+    public UserForceTreatment UserForces { get; set; } = UserForceTreatment.Explicit;
+
+    /// <summary>The iterations the last step's solve took.</summary>
+    public int LastIterations { get; private set; }
+
+    /// <summary>The last step's final relative residual (|r| / |b| for conjugate gradients, the last Newton update's relative size for Newton).</summary>
+    public double LastResidual { get; private set; }
+
+    /// <summary>True when the last step's solve reached <see cref="Tolerance"/>.</summary>
+    public bool LastConverged { get; private set; } = true;
+
+    /// <inheritdoc />
+    public void Step(IOdeSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double dt)
+    {
+        StepChecks.Check(system, state, next, dt);
+        if (system is ParticleSystem particles)
+        {
+            StepParticles(particles, time, state, next, dt);
+        }
+        else
+        {
+            StepNewton(system, time, state, next, dt);
+        }
+
+        if (!LastConverged && ThrowIfNotConverged)
+        {
+            throw new SolverNotConvergedException(
+                time + dt, LastIterations, LastResidual, system is ParticleSystem ? _tolerance : NewtonTolerance);
+        }
+    }
+
+    private void StepParticles(ParticleSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double h)
+    {
+        var n = system.CoordinateCount;
+        var x0 = state.Slice(0, n);
+        var v0 = state.Slice(n, n);
+        var f0 = _force = StepChecks.Sized(_force, n);
+        var b = _rhs = StepChecks.Sized(_rhs, n);
+        var dv = _dv = StepChecks.Sized(_dv, n);
+        var r = _residual = StepChecks.Sized(_residual, n);
+        var p = _direction = StepChecks.Sized(_direction, n);
+        var q = _product = StepChecks.Sized(_product, n);
+        var z = _preconditioned = StepChecks.Sized(_preconditioned, n);
+        var jw = _jacobianProduct = StepChecks.Sized(_jacobianProduct, n);
+        var blocks = _blocks = StepChecks.Sized(_blocks, 3 * n);
+        var masses = system.Masses;
+        var inverseMasses = system.InverseMasses;
+        var end = time + h;
+
+        // f0, and the linearisation: K v0 accumulates into jw, the diagonal blocks of h D + h^2 K into blocks.
+        system.AccumulateForces(end, x0, v0).CopyTo(f0);
+        var view = new ParticleState(end, x0, v0, masses, inverseMasses);
+        CollectJacobians(system, view, h);
+        Array.Clear(jw, 0, n);
+        Array.Clear(blocks, 0, blocks.Length);
+        foreach (var jacobian in _jacobians)
+        {
+            jacobian.Linearize(view, h * h, h, jw);
+            jacobian.AddDiagonalBlocks(blocks);
+        }
+
+        // b = h (f0 + h K v0), filtered; preconditioner P = inverse of the blocks of M - (h D + h^2 K).
+        for (var k = 0; k < n; k++)
+        {
+            b[k] = inverseMasses[k / 3] == 0.0 ? 0.0 : h * (f0[k] + (h * jw[k]));
+        }
+
+        InvertBlocks(blocks, masses, inverseMasses);
+
+        // Preconditioned conjugate gradients, from the previous step's dv when warm-starting (motion is smooth, so
+        // consecutive velocity changes are close), else from 0; pinned components are always 0.
+        var rhsNorm = Norm(b);
+        if (WarmStart && _warm)
+        {
+            for (var k = 0; k < n; k++)
+            {
+                dv[k] = inverseMasses[k / 3] == 0.0 ? 0.0 : dv[k];
+            }
+
+            ApplySystemMatrix(dv, q, jw, masses, inverseMasses);
+            for (var k = 0; k < n; k++)
+            {
+                r[k] = b[k] - q[k];
+            }
+        }
+        else
+        {
+            Array.Clear(dv, 0, n);
+            Array.Copy(b, r, n);
+        }
+
+        Precondition(blocks, r, z);
+        Array.Copy(z, p, n);
+        var rz = Dot(r, z);
+        var iterations = 0;
+        var residualNorm = Norm(r);
+        var target = _tolerance * rhsNorm;
+        while (residualNorm > target && iterations < _maxIterations)
+        {
+            ApplySystemMatrix(p, q, jw, masses, inverseMasses);
+            var pq = Dot(p, q);
+            if (!(pq > 0.0))
+            {
+                break; // not positive definite along p (or NaN): keep the best solution so far
+            }
+
+            var alpha = rz / pq;
+            for (var k = 0; k < n; k++)
+            {
+                dv[k] += alpha * p[k];
+                r[k] -= alpha * q[k];
+            }
+
+            iterations++;
+            residualNorm = Norm(r);
+            if (residualNorm <= target)
+            {
+                break;
+            }
+
+            Precondition(blocks, r, z);
+            var rzNext = Dot(r, z);
+            var beta = rzNext / rz;
+            rz = rzNext;
+            for (var k = 0; k < n; k++)
+            {
+                p[k] = z[k] + (beta * p[k]);
+            }
+        }
+
+        LastIterations = iterations;
+        LastResidual = rhsNorm > 0.0 ? residualNorm / rhsNorm : 0.0;
+        LastConverged = residualNorm <= target;
+        _warm = DoubleChecks.FirstNonFinite(dv) < 0;
+
+        var x1 = next.Slice(0, n);
+        var v1 = next.Slice(n, n);
+        for (var k = 0; k < n; k++)
+        {
+            v1[k] = v0[k] + dv[k];
+            x1[k] = x0[k] + (h * v1[k]);
+        }
+    }
+
+    /// <summary>The generators to linearise this step: those with a Jacobian, and the others by finite differences if asked.</summary>
+    private void CollectJacobians(ParticleSystem system, in ParticleState view, double h)
+    {
+        _jacobians.Clear();
+        var forces = system.Forces;
+        for (var g = 0; g < forces.Count; g++)
+        {
+            var generator = forces[g];
+            if (generator is IForceJacobian jacobian)
+            {
+                _jacobians.Add(jacobian);
+            }
+            else if (UserForces == UserForceTreatment.FiniteDifference)
+            {
+                if (!_finiteDifference.TryGetValue(generator, out var wrapper))
+                {
+                    wrapper = new FiniteDifferenceJacobian(generator);
+                    _finiteDifference.Add(generator, wrapper);
+                }
+
+                _jacobians.Add(wrapper);
+            }
+        }
+    }
+
+    /// <summary>q = (M - J) p on the free particles, 0 on the pinned ones.</summary>
+    private void ApplySystemMatrix(
+        double[] p, double[] q, double[] jw, ReadOnlySpan<double> masses, ReadOnlySpan<double> inverseMasses)
+    {
+        Array.Clear(jw, 0, p.Length);
+        foreach (var jacobian in _jacobians)
+        {
+            jacobian.AddJacobianProduct(p, jw);
+        }
+
+        for (var i = 0; i < masses.Length; i++)
+        {
+            var o = 3 * i;
+            if (inverseMasses[i] == 0.0)
+            {
+                q[o] = q[o + 1] = q[o + 2] = 0.0;
+                continue;
+            }
+
+            var m = masses[i];
+            q[o] = (m * p[o]) - jw[o];
+            q[o + 1] = (m * p[o + 1]) - jw[o + 1];
+            q[o + 2] = (m * p[o + 2]) - jw[o + 2];
+        }
+    }
+
+    /// <summary>Turns each 3 x 3 block J_ii into (M_i - J_ii)^-1 in place; pinned particles get the zero block (filtered).</summary>
+    private static void InvertBlocks(double[] blocks, ReadOnlySpan<double> masses, ReadOnlySpan<double> inverseMasses)
+    {
+        for (var i = 0; i < masses.Length; i++)
+        {
+            var o = 9 * i;
+            if (inverseMasses[i] == 0.0)
+            {
+                Array.Clear(blocks, o, 9);
+                continue;
+            }
+
+            var m = masses[i];
+            double a = m - blocks[o], bb = -blocks[o + 1], c = -blocks[o + 2];
+            double d = -blocks[o + 3], e = m - blocks[o + 4], f = -blocks[o + 5];
+            double g = -blocks[o + 6], hh = -blocks[o + 7], k = m - blocks[o + 8];
+            double c00 = (e * k) - (f * hh), c01 = (c * hh) - (bb * k), c02 = (bb * f) - (c * e);
+            double c10 = (f * g) - (d * k), c11 = (a * k) - (c * g), c12 = (c * d) - (a * f);
+            double c20 = (d * hh) - (e * g), c21 = (bb * g) - (a * hh), c22 = (a * e) - (bb * d);
+            var determinant = (a * c00) + (bb * c10) + (c * c20);
+            if (!(Math.Abs(determinant) > 0.0) || !DoubleChecks.IsFinite(determinant))
+            {
+                // Degenerate block: fall back to plain Jacobi on the mass alone.
+                Array.Clear(blocks, o, 9);
+                blocks[o] = blocks[o + 4] = blocks[o + 8] = 1.0 / m;
+                continue;
+            }
+
+            var s = 1.0 / determinant;
+            blocks[o] = c00 * s;
+            blocks[o + 1] = c01 * s;
+            blocks[o + 2] = c02 * s;
+            blocks[o + 3] = c10 * s;
+            blocks[o + 4] = c11 * s;
+            blocks[o + 5] = c12 * s;
+            blocks[o + 6] = c20 * s;
+            blocks[o + 7] = c21 * s;
+            blocks[o + 8] = c22 * s;
+        }
+    }
+
+    private static void Precondition(double[] inverseBlocks, double[] r, double[] z)
+    {
+        for (var i = 0; i < r.Length / 3; i++)
+        {
+            int o = 3 * i, m = 9 * i;
+            double rx = r[o], ry = r[o + 1], rz = r[o + 2];
+            z[o] = (inverseBlocks[m] * rx) + (inverseBlocks[m + 1] * ry) + (inverseBlocks[m + 2] * rz);
+            z[o + 1] = (inverseBlocks[m + 3] * rx) + (inverseBlocks[m + 4] * ry) + (inverseBlocks[m + 5] * rz);
+            z[o + 2] = (inverseBlocks[m + 6] * rx) + (inverseBlocks[m + 7] * ry) + (inverseBlocks[m + 8] * rz);
+        }
+    }
+
+    private static double Dot(double[] a, double[] b)
+    {
+        var sum = 0.0;
+        for (var k = 0; k < a.Length; k++)
+        {
+            sum += a[k] * b[k];
+        }
+
+        return sum;
+    }
+
+    private static double Norm(double[] a) => Math.Sqrt(Dot(a, a));
+
+    /// <summary>Newton on G(y) = y - y0 - h f(t + h, y) = 0, with a forward-difference Jacobian and partial-pivot LU.</summary>
+    private void StepNewton(IOdeSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double h)
+    {
+        var n = state.Length;
+        var y = _newtonY = StepChecks.Sized(_newtonY, n);
+        var f = _newtonF = StepChecks.Sized(_newtonF, n);
+        var shifted = _newtonFShifted = StepChecks.Sized(_newtonFShifted, n);
+        var matrix = _newtonMatrix = StepChecks.Sized(_newtonMatrix, n * n);
+        var delta = _newtonDelta = StepChecks.Sized(_newtonDelta, n);
+        var pivots = _pivots = _pivots is not null && _pivots.Length == n ? _pivots : new int[n];
+        var end = time + h;
+
+        state.CopyTo(y);
+        var iterations = 0;
+        var update = double.PositiveInfinity;
+        while (iterations < _maxIterations)
+        {
+            system.Evaluate(end, y, f);
+            for (var j = 0; j < n; j++)
+            {
+                // Column j of dG/dy = I - h df/dy by a forward difference in y_j.
+                var original = y[j];
+                var epsilon = 1.4901161193847656e-8 * Math.Max(1.0, Math.Abs(original));
+                y[j] = original + epsilon;
+                system.Evaluate(end, y, shifted);
+                y[j] = original;
+                for (var i = 0; i < n; i++)
+                {
+                    matrix[(i * n) + j] = (i == j ? 1.0 : 0.0) - (h * (shifted[i] - f[i]) / epsilon);
+                }
+            }
+
+            for (var i = 0; i < n; i++)
+            {
+                delta[i] = -(y[i] - state[i] - (h * f[i]));
+            }
+
+            if (!LuSolve(matrix, pivots, delta, n))
+            {
+                break;
+            }
+
+            update = 0.0;
+            for (var i = 0; i < n; i++)
+            {
+                y[i] += delta[i];
+                update = Math.Max(update, Math.Abs(delta[i]) / (1.0 + Math.Abs(y[i])));
+            }
+
+            iterations++;
+            if (update <= NewtonTolerance || !DoubleChecks.IsFinite(update))
+            {
+                break;
+            }
+        }
+
+        LastIterations = iterations;
+        LastResidual = update;
+        LastConverged = update <= NewtonTolerance;
+        y.AsSpan().CopyTo(next);
+    }
+
+    /// <summary>Solves A x = b in place (A n x n row-major, overwritten by its LU factors; b becomes x). False if singular.</summary>
+    private static bool LuSolve(double[] a, int[] pivots, double[] b, int n)
+    {
+        for (var col = 0; col < n; col++)
+        {
+            var pivot = col;
+            for (var row = col + 1; row < n; row++)
+            {
+                if (Math.Abs(a[(row * n) + col]) > Math.Abs(a[(pivot * n) + col]))
+                {
+                    pivot = row;
+                }
+            }
+
+            if (a[(pivot * n) + col] == 0.0)
+            {
+                return false;
+            }
+
+            pivots[col] = pivot;
+            if (pivot != col)
+            {
+                for (var k = 0; k < n; k++)
+                {
+                    (a[(col * n) + k], a[(pivot * n) + k]) = (a[(pivot * n) + k], a[(col * n) + k]);
+                }
+
+                (b[col], b[pivot]) = (b[pivot], b[col]);
+            }
+
+            for (var row = col + 1; row < n; row++)
+            {
+                var factor = a[(row * n) + col] / a[(col * n) + col];
+                for (var k = col; k < n; k++)
+                {
+                    a[(row * n) + k] -= factor * a[(col * n) + k];
+                }
+
+                b[row] -= factor * b[col];
+            }
+        }
+
+        for (var row = n - 1; row >= 0; row--)
+        {
+            var sum = b[row];
+            for (var k = row + 1; k < n; k++)
+            {
+                sum -= a[(row * n) + k] * b[k];
+            }
+
+            b[row] = sum / a[(row * n) + row];
+        }
+
+        return true;
+    }
+}
