@@ -177,7 +177,7 @@ public sealed class ImplicitEuler : IIntegrator
                 dv[k] = inverseMasses[k / 3] == 0.0 ? 0.0 : dv[k];
             }
 
-            ApplySystemMatrix(dv, q, jw, masses, inverseMasses);
+            _ = ApplySystemMatrix(dv, q, jw, masses, inverseMasses);
             for (var k = 0; k < n; k++)
             {
                 r[k] = b[k] - q[k];
@@ -189,40 +189,40 @@ public sealed class ImplicitEuler : IIntegrator
             Array.Copy(b, r, n);
         }
 
-        Precondition(blocks, r, z);
+        var rz = Precondition(blocks, r, z);
         Array.Copy(z, p, n);
-        var rz = Dot(r, z);
         var iterations = 0;
         var residualNorm = Norm(r);
         var target = _tolerance * rhsNorm;
         while (residualNorm > target && iterations < _maxIterations)
         {
-            ApplySystemMatrix(p, q, jw, masses, inverseMasses);
-            var pq = Dot(p, q);
+            var pq = ApplySystemMatrix(p, q, jw, masses, inverseMasses);
             if (!(pq > 0.0))
             {
                 break; // not positive definite along p (or NaN): keep the best solution so far
             }
 
             var alpha = rz / pq;
-            for (var k = 0; k < n; k++)
+            var rr = 0.0;
+            for (var k = 0; k < dv.Length; k++)
             {
                 dv[k] += alpha * p[k];
-                r[k] -= alpha * q[k];
+                var rk = r[k] - (alpha * q[k]);
+                r[k] = rk;
+                rr += rk * rk;
             }
 
             iterations++;
-            residualNorm = Norm(r);
+            residualNorm = Math.Sqrt(rr);
             if (residualNorm <= target)
             {
                 break;
             }
 
-            Precondition(blocks, r, z);
-            var rzNext = Dot(r, z);
+            var rzNext = Precondition(blocks, r, z);
             var beta = rzNext / rz;
             rz = rzNext;
-            for (var k = 0; k < n; k++)
+            for (var k = 0; k < p.Length; k++)
             {
                 p[k] = z[k] + (beta * p[k]);
             }
@@ -267,8 +267,8 @@ public sealed class ImplicitEuler : IIntegrator
         }
     }
 
-    /// <summary>q = (M - J) p on the free particles, 0 on the pinned ones.</summary>
-    private void ApplySystemMatrix(
+    /// <summary>q = (M - J) p on the free particles, 0 on the pinned ones; returns p . q.</summary>
+    private double ApplySystemMatrix(
         double[] p, double[] q, double[] jw, ReadOnlySpan<double> masses, ReadOnlySpan<double> inverseMasses)
     {
         Array.Clear(jw, 0, p.Length);
@@ -277,6 +277,7 @@ public sealed class ImplicitEuler : IIntegrator
             jacobian.AddJacobianProduct(p, jw);
         }
 
+        var pq = 0.0;
         for (var i = 0; i < masses.Length; i++)
         {
             var o = 3 * i;
@@ -287,10 +288,14 @@ public sealed class ImplicitEuler : IIntegrator
             }
 
             var m = masses[i];
-            q[o] = (m * p[o]) - jw[o];
-            q[o + 1] = (m * p[o + 1]) - jw[o + 1];
-            q[o + 2] = (m * p[o + 2]) - jw[o + 2];
+            double qx = (m * p[o]) - jw[o], qy = (m * p[o + 1]) - jw[o + 1], qz = (m * p[o + 2]) - jw[o + 2];
+            q[o] = qx;
+            q[o + 1] = qy;
+            q[o + 2] = qz;
+            pq += (p[o] * qx) + (p[o + 1] * qy) + (p[o + 2] * qz);
         }
+
+        return pq;
     }
 
     /// <summary>Turns each 3 x 3 block J_ii into (M_i - J_ii)^-1 in place; pinned particles get the zero block (filtered).</summary>
@@ -334,16 +339,24 @@ public sealed class ImplicitEuler : IIntegrator
         }
     }
 
-    private static void Precondition(double[] inverseBlocks, double[] r, double[] z)
+    /// <summary>z = P r with the inverted blocks; returns r . z.</summary>
+    private static double Precondition(double[] inverseBlocks, double[] r, double[] z)
     {
+        var rz = 0.0;
         for (var i = 0; i < r.Length / 3; i++)
         {
             int o = 3 * i, m = 9 * i;
-            double rx = r[o], ry = r[o + 1], rz = r[o + 2];
-            z[o] = (inverseBlocks[m] * rx) + (inverseBlocks[m + 1] * ry) + (inverseBlocks[m + 2] * rz);
-            z[o + 1] = (inverseBlocks[m + 3] * rx) + (inverseBlocks[m + 4] * ry) + (inverseBlocks[m + 5] * rz);
-            z[o + 2] = (inverseBlocks[m + 6] * rx) + (inverseBlocks[m + 7] * ry) + (inverseBlocks[m + 8] * rz);
+            double rx = r[o], ry = r[o + 1], rzz = r[o + 2];
+            var zx = (inverseBlocks[m] * rx) + (inverseBlocks[m + 1] * ry) + (inverseBlocks[m + 2] * rzz);
+            var zy = (inverseBlocks[m + 3] * rx) + (inverseBlocks[m + 4] * ry) + (inverseBlocks[m + 5] * rzz);
+            var zz = (inverseBlocks[m + 6] * rx) + (inverseBlocks[m + 7] * ry) + (inverseBlocks[m + 8] * rzz);
+            z[o] = zx;
+            z[o + 1] = zy;
+            z[o + 2] = zz;
+            rz += (rx * zx) + (ry * zy) + (rzz * zz);
         }
+
+        return rz;
     }
 
     private static double Dot(double[] a, double[] b)
