@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics;
 
@@ -16,12 +17,14 @@ public readonly ref struct ParticleState
     /// <param name="velocities">3 values per particle.</param>
     /// <param name="masses">One value per particle.</param>
     /// <param name="inverseMasses">One value per particle: 1 / m, or 0 for a pinned particle.</param>
+    /// <param name="runner">The runner a generator may split its work over, or null to run on the calling thread.</param>
     public ParticleState(
         double time,
         ReadOnlySpan<double> positions,
         ReadOnlySpan<double> velocities,
         ReadOnlySpan<double> masses,
-        ReadOnlySpan<double> inverseMasses)
+        ReadOnlySpan<double> inverseMasses,
+        IParallelRunner? runner = null)
     {
         if (positions.Length != 3 * masses.Length || velocities.Length != positions.Length
             || inverseMasses.Length != masses.Length)
@@ -35,6 +38,7 @@ public readonly ref struct ParticleState
         Velocities = velocities;
         Masses = masses;
         InverseMasses = inverseMasses;
+        Runner = runner;
     }
 
     /// <summary>The time of the evaluation, in seconds.</summary>
@@ -54,6 +58,12 @@ public readonly ref struct ParticleState
 
     /// <summary>Inverse masses, one per particle: 1 / m for a free particle, 0 for a pinned one.</summary>
     public ReadOnlySpan<double> InverseMasses { get; }
+
+    /// <summary>
+    /// The runner that a generator with much work may split it over (<see cref="ParticleSystem.Runner"/>), or null.
+    /// A generator that uses it must produce bit-identical forces with and without it.
+    /// </summary>
+    public IParallelRunner? Runner { get; }
 
     /// <summary>The position of particle <paramref name="index"/>.</summary>
     public Vector3d Position(int index) =>

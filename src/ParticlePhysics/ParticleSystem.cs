@@ -2,6 +2,7 @@ using System;
 using System.Collections.Generic;
 using System.Numerics;
 using ParticlePhysics.Integrators;
+using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics;
 
@@ -49,6 +50,13 @@ public sealed class ParticleSystem : ISecondOrderSystem
 
     /// <summary>The number of particles.</summary>
     public int Count => _count;
+
+    /// <summary>
+    /// The runner over which force generators may split large evaluations (a spring network of thousands of
+    /// springs), or null (the default) to compute everything on the calling thread. Results are bit-identical either
+    /// way. The system does not own the runner: dispose a <see cref="WorkerThreadRunner"/> yourself.
+    /// </summary>
+    public IParallelRunner? Runner { get; set; }
 
     /// <summary>
     /// The largest magnitude a position or velocity coordinate may reach: a step that produces a larger value, NaN
@@ -363,7 +371,7 @@ public sealed class ParticleSystem : ISecondOrderSystem
         var n = 3 * _count;
         var forces = _forces.AsSpan(0, n);
         forces.Clear();
-        var view = new ParticleState(time, positions, velocities, Masses, InverseMasses);
+        var view = new ParticleState(time, positions, velocities, Masses, InverseMasses, Runner);
         for (var g = 0; g < _forceGenerators.Count; g++)
         {
             _forceGenerators[g].AddForces(in view, forces);

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics.Forces;
 
@@ -29,6 +30,10 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     private const int LinearStride = 5;
     private double[] _linear = Array.Empty<double>();
     private double[] _anchoredLinear = Array.Empty<double>();
+
+    // Parallel evaluation: below this many springs, waking other threads costs more than it saves.
+    private const int ParallelThreshold = 4096;
+    private ParallelSpringForces? _parallel;
 
     /// <summary>An empty network for the particles of <paramref name="system"/>.</summary>
     public SpringNetwork(ParticleSystem system)
@@ -112,6 +117,13 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     public unsafe void AddForces(in ParticleState state, Span<double> forces)
     {
         CheckSizes(state.Positions.Length, state.Velocities.Length, forces.Length);
+        if (state.Runner is { MaxParallelism: > 1 } runner && _pairs.Count >= ParallelThreshold)
+        {
+            _parallel ??= new ParallelSpringForces();
+            _parallel.AddForces(_pairs, _system.Count, state.Positions, state.Velocities, forces, runner);
+            AddAnchoredForces(state.Positions, state.Velocities, forces);
+            return;
+        }
 
         // The hot loop of every explicit step: pointers, because each spring gathers and scatters by index and the
         // bounds check of every access would otherwise cost as much as the arithmetic.
@@ -124,17 +136,20 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
                 var q = p + (PairStride * s);
                 double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
                 var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
-                if (lengthSquared == 0.0)
+                double fx = 0.0, fy = 0.0, fz = 0.0;
+                if (lengthSquared != 0.0)
                 {
-                    continue;
+                    // (At l = 0 the zero force is still added, as the parallel pass does, so both give the same bits.)
+                    var length = Math.Sqrt(lengthSquared);
+                    var inverse = 1.0 / length;
+                    double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
+                    var closing = ((v[a] - v[b]) * ux) + ((v[a + 1] - v[b + 1]) * uy) + ((v[a + 2] - v[b + 2]) * uz);
+                    var magnitude = (q[0] * (length - q[1])) + (q[2] * closing);
+                    fx = magnitude * ux;
+                    fy = magnitude * uy;
+                    fz = magnitude * uz;
                 }
 
-                var length = Math.Sqrt(lengthSquared);
-                var inverse = 1.0 / length;
-                double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
-                var closing = ((v[a] - v[b]) * ux) + ((v[a + 1] - v[b + 1]) * uy) + ((v[a + 2] - v[b + 2]) * uz);
-                var magnitude = (q[0] * (length - q[1])) + (q[2] * closing);
-                double fx = magnitude * ux, fy = magnitude * uy, fz = magnitude * uz;
                 f[a] -= fx;
                 f[a + 1] -= fy;
                 f[a + 2] -= fz;
@@ -144,8 +159,11 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             }
         }
 
-        var x0 = state.Positions;
-        var v0 = state.Velocities;
+        AddAnchoredForces(state.Positions, state.Velocities, forces);
+    }
+
+    private void AddAnchoredForces(ReadOnlySpan<double> x0, ReadOnlySpan<double> v0, Span<double> forces)
+    {
         var particle = _anchored.First;
         var r = _anchored.Parameters;
         for (var s = 0; s < _anchored.Count; s++)

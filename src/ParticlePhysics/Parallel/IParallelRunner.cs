@@ -1,0 +1,20 @@
+namespace ParticlePhysics.Parallel;
+
+/// <summary>
+/// Runs the chunks of an <see cref="IParallelWork"/> concurrently. The engine never starts threads of its own and
+/// never uses a global pool: a host that wants both cores sets <see cref="ParticleSystem.Runner"/> to an
+/// implementation of this interface, either <see cref="WorkerThreadRunner"/> or an adapter to its own job system.
+/// Results are bit-identical with or without a runner, whatever the number of chunks or threads.
+/// </summary>
+public interface IParallelRunner
+{
+    /// <summary>How many chunks can run at the same time (threads or job workers, the caller's included).</summary>
+    int MaxParallelism { get; }
+
+    /// <summary>
+    /// Calls <c>work.Execute(i, chunkCount)</c> exactly once for every i in [0, chunkCount), possibly concurrently,
+    /// and returns when all have finished. If a chunk throws, rethrows after the others have finished.
+    /// Must not allocate per call (it runs several times per simulation step).
+    /// </summary>
+    void Run(IParallelWork work, int chunkCount);
+}

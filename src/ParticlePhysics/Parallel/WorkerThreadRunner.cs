@@ -1,0 +1,136 @@
+using System;
+using System.Runtime.ExceptionServices;
+using System.Threading;
+
+namespace ParticlePhysics.Parallel;
+
+/// <summary>
+/// An <see cref="IParallelRunner"/> with its own dedicated background threads (the calling thread works too).
+/// Create one per simulation thread, set it as <see cref="ParticleSystem.Runner"/>, and dispose it when done.
+/// Chunks are claimed with an atomic counter; waking the workers costs a few microseconds per pass, so it pays for
+/// systems of thousands of particles, not for a handful.
+/// </summary>
+public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
+{
+    private readonly Thread[] _threads;
+    private readonly SemaphoreSlim _start = new(0);
+    private readonly ManualResetEventSlim _finished = new(false);
+    private IParallelWork? _work;
+    private int _chunkCount;
+    private int _nextChunk;
+    private int _busyWorkers;
+    private ExceptionDispatchInfo? _failure;
+    private volatile bool _disposed;
+
+    /// <summary>Creates a runner with <paramref name="parallelism"/> - 1 worker threads (default: one per core).</summary>
+    /// <param name="parallelism">The number of chunks run at once, the calling thread included: at least 1.</param>
+    public WorkerThreadRunner(int parallelism = 0)
+    {
+        if (parallelism < 0)
+        {
+            throw new ArgumentOutOfRangeException(
+                nameof(parallelism), parallelism, $"parallelism must be >= 1, or 0 for one per core; got {parallelism}.");
+        }
+
+        MaxParallelism = parallelism == 0 ? Environment.ProcessorCount : parallelism;
+        _threads = new Thread[MaxParallelism - 1];
+        for (var t = 0; t < _threads.Length; t++)
+        {
+            _threads[t] = new Thread(WorkerLoop) { IsBackground = true, Name = $"ParticlePhysics worker {t + 1}" };
+            _threads[t].Start();
+        }
+    }
+
+    /// <inheritdoc />
+    public int MaxParallelism { get; }
+
+    /// <inheritdoc />
+    public void Run(IParallelWork work, int chunkCount)
+    {
+        Guard.NotNull(work, nameof(work));
+        if (_disposed)
+        {
+            throw new ObjectDisposedException(nameof(WorkerThreadRunner));
+        }
+
+        if (chunkCount <= 0)
+        {
+            return;
+        }
+
+        if (_threads.Length == 0 || chunkCount == 1)
+        {
+            for (var chunk = 0; chunk < chunkCount; chunk++)
+            {
+                work.Execute(chunk, chunkCount);
+            }
+
+            return;
+        }
+
+        _work = work;
+        _chunkCount = chunkCount;
+        _nextChunk = 0;
+        _failure = null;
+        _busyWorkers = _threads.Length;
+        _finished.Reset();
+        _start.Release(_threads.Length);
+        Drain(work, chunkCount);
+        _finished.Wait();
+        _work = null;
+        _failure?.Throw();
+    }
+
+    /// <summary>Stops the worker threads.</summary>
+    public void Dispose()
+    {
+        if (_disposed)
+        {
+            return;
+        }
+
+        _disposed = true;
+        _start.Release(_threads.Length);
+        foreach (var thread in _threads)
+        {
+            thread.Join();
+        }
+
+        _start.Dispose();
+        _finished.Dispose();
+    }
+
+    private void WorkerLoop()
+    {
+        while (true)
+        {
+            _start.Wait();
+            if (_disposed)
+            {
+                return;
+            }
+
+            Drain(_work!, _chunkCount);
+            if (Interlocked.Decrement(ref _busyWorkers) == 0)
+            {
+                _finished.Set();
+            }
+        }
+    }
+
+    private void Drain(IParallelWork work, int chunkCount)
+    {
+        int chunk;
+        while ((chunk = Interlocked.Increment(ref _nextChunk) - 1) < chunkCount)
+        {
+            try
+            {
+                work.Execute(chunk, chunkCount);
+            }
+            catch (Exception ex)
+            {
+                Interlocked.CompareExchange(ref _failure, ExceptionDispatchInfo.Capture(ex), null);
+            }
+        }
+    }
+}
