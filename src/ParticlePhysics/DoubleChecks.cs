@@ -1,4 +1,6 @@
 using System;
+using System.Numerics;
+using System.Runtime.InteropServices;
 using System.Runtime.CompilerServices;
 
 namespace ParticlePhysics;
@@ -30,7 +32,25 @@ internal static class DoubleChecks
     /// </summary>
     public static int FirstBeyond(ReadOnlySpan<double> values, double limit)
     {
-        for (var i = 0; i < values.Length; i++)
+        var start = 0;
+        if (Vector.IsHardwareAccelerated)
+        {
+            // Whole vectors first: |v| <= limit is false for NaN, so one comparison per lane catches everything.
+            var vectors = MemoryMarshal.Cast<double, Vector<double>>(values);
+            var bound = new Vector<double>(limit);
+            for (var j = 0; j < vectors.Length; j++)
+            {
+                if (!Vector.LessThanOrEqualAll(Vector.Abs(vectors[j]), bound))
+                {
+                    start = j * Vector<double>.Count;
+                    break;
+                }
+
+                start = (j + 1) * Vector<double>.Count;
+            }
+        }
+
+        for (var i = start; i < values.Length; i++)
         {
             if (!(Math.Abs(values[i]) <= limit))
             {

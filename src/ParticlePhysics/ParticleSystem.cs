@@ -320,7 +320,8 @@ public sealed class ParticleSystem : ISecondOrderSystem
                 _time + dt, _time, bad, (bad % (3 * _count)) / 3, _next[bad], _divergenceLimit);
         }
 
-        _next.AsSpan().CopyTo(current);
+        // Commit by swapping the buffers (the spans handed out before the step are documented as stale after it).
+        (_state, _next) = (_next, _state);
         _time += dt;
     }
 
@@ -351,14 +352,18 @@ public sealed class ParticleSystem : ISecondOrderSystem
         }
 
         var forces = AccumulateForces(time, positions, velocities);
-        var inverseMasses = _inverseMasses;
-        for (var i = 0; i < _count; i++)
+        unsafe
         {
-            var w = inverseMasses[i];
-            var o = 3 * i;
-            accelerations[o] = forces[o] * w;
-            accelerations[o + 1] = forces[o + 1] * w;
-            accelerations[o + 2] = forces[o + 2] * w;
+            fixed (double* f = forces, w = _inverseMasses, a = accelerations)
+            {
+                for (var i = 0; i < _count; i++)
+                {
+                    var o = 3 * i;
+                    a[o] = f[o] * w[i];
+                    a[o + 1] = f[o + 1] * w[i];
+                    a[o + 2] = f[o + 2] * w[i];
+                }
+            }
         }
     }
 

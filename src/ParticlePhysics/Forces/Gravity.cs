@@ -49,6 +49,17 @@ public sealed class Gravity : IForceGenerator, IPotentialEnergy, IForceJacobian
     {
         var masses = state.Masses;
         double gx = _acceleration.X, gy = _acceleration.Y, gz = _acceleration.Z;
+        if (gx == 0.0 && gz == 0.0)
+        {
+            // The usual case, gravity along y: one addition per particle instead of three (adding 0 changes nothing).
+            for (var i = 0; i < masses.Length; i++)
+            {
+                forces[(3 * i) + 1] += masses[i] * gy;
+            }
+
+            return;
+        }
+
         for (var i = 0; i < masses.Length; i++)
         {
             var m = masses[i];

@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Forces;
 
@@ -66,11 +67,7 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
         var lambda = _coefficient;
         if (_particles is null)
         {
-            for (var k = 0; k < v.Length; k++)
-            {
-                forces[k] -= lambda * v[k];
-            }
-
+            VectorKernels.SubtractScaled(forces, v, lambda);
             return;
         }
 

@@ -104,10 +104,11 @@ internal sealed unsafe class ParallelSpringForces
             double* x = _x, v = _v;
             for (var s = begin; s < end; s++)
             {
-                int a = 3 * _first[s], b = 3 * _second[s];
+                long a = 3 * _first[s], b = 3 * _second[s];
+                double* xa = x + a, xb = x + b, va = v + a, vb = v + b;
                 var q = _parameters + (3 * s);
                 var f = _springForces + (3 * s);
-                double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
+                double dx = xa[0] - xb[0], dy = xa[1] - xb[1], dz = xa[2] - xb[2];
                 var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
                 if (lengthSquared == 0.0)
                 {
@@ -119,7 +120,7 @@ internal sealed unsafe class ParallelSpringForces
                 var length = Math.Sqrt(lengthSquared);
                 var inverse = 1.0 / length;
                 double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
-                var closing = ((v[a] - v[b]) * ux) + ((v[a + 1] - v[b + 1]) * uy) + ((v[a + 2] - v[b + 2]) * uz);
+                var closing = ((va[0] - vb[0]) * ux) + ((va[1] - vb[1]) * uy) + ((va[2] - vb[2]) * uz);
                 var magnitude = (q[0] * (length - q[1])) + (q[2] * closing);
                 f[0] = magnitude * ux;
                 f[1] = magnitude * uy;

@@ -130,9 +130,11 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         fixed (double* x = state.Positions, v = state.Velocities, f = forces, p = _pairs.Parameters)
         fixed (int* first = _pairs.First, second = _pairs.Second)
         {
-            for (var s = 0; s < _pairs.Count; s++)
+            var count = _pairs.Count;
+            for (var s = 0; s < count; s++)
             {
-                int a = 3 * first[s], b = 3 * second[s];
+                // 64-bit offsets, so that x[a + 1] is a single base + index + displacement address.
+                long a = 3 * first[s], b = 3 * second[s];
                 var q = p + (PairStride * s);
                 double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
                 var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
@@ -281,20 +283,22 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         fixed (double* wp = w, y = result, lin = _linear)
         fixed (int* first = _pairs.First, second = _pairs.Second)
         {
-            for (var s = 0; s < _pairs.Count; s++)
+            var count = _pairs.Count;
+            for (var s = 0; s < count; s++)
             {
-                int a = 3 * first[s], b = 3 * second[s];
+                long a = 3 * first[s], b = 3 * second[s];
+                double* wa = wp + a, wb = wp + b, ya = y + a, yb = y + b;
                 var q = lin + (LinearStride * s);
-                double dx = wp[a] - wp[b], dy = wp[a + 1] - wp[b + 1], dz = wp[a + 2] - wp[b + 2];
+                double dx = wa[0] - wb[0], dy = wa[1] - wb[1], dz = wa[2] - wb[2];
                 double ux = q[0], uy = q[1], uz = q[2], iso = q[3];
                 var axial = q[4] * ((ux * dx) + (uy * dy) + (uz * dz));
                 double yx = (iso * dx) + (axial * ux), yy = (iso * dy) + (axial * uy), yz = (iso * dz) + (axial * uz);
-                y[a] += yx;
-                y[a + 1] += yy;
-                y[a + 2] += yz;
-                y[b] -= yx;
-                y[b + 1] -= yy;
-                y[b + 2] -= yz;
+                ya[0] += yx;
+                ya[1] += yy;
+                ya[2] += yz;
+                yb[0] -= yx;
+                yb[1] -= yy;
+                yb[2] -= yz;
             }
         }
 

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Integrators;
 
@@ -34,36 +35,17 @@ public sealed class RungeKutta4 : IIntegrator
         var stage = _stage = StepChecks.Sized(_stage, n);
         var half = 0.5 * dt;
         var sixth = dt / 6.0;
+        var third = 2.0 * sixth;
 
-        // k1: next accumulates y + h k1 / 6 while the stage takes y + h k1 / 2.
+        // The four stages, each followed by one pass over y: next accumulates y + h (k1 + 2 k2 + 2 k3 + k4) / 6
+        // while stage takes the next stage's state.
         system.Evaluate(time, state, k);
-        for (var i = 0; i < n; i++)
-        {
-            next[i] = state[i] + (sixth * k[i]);
-            stage[i] = state[i] + (half * k[i]);
-        }
-
-        // k2, at the midpoint.
+        VectorKernels.Stage(next, stage, state, k, sixth, half, first: true);
         system.Evaluate(time + half, stage, k);
-        for (var i = 0; i < n; i++)
-        {
-            next[i] += 2.0 * sixth * k[i];
-            stage[i] = state[i] + (half * k[i]);
-        }
-
-        // k3, at the midpoint again.
+        VectorKernels.Stage(next, stage, state, k, third, half, first: false);
         system.Evaluate(time + half, stage, k);
-        for (var i = 0; i < n; i++)
-        {
-            next[i] += 2.0 * sixth * k[i];
-            stage[i] = state[i] + (dt * k[i]);
-        }
-
-        // k4, at the end of the step.
+        VectorKernels.Stage(next, stage, state, k, third, dt, first: false);
         system.Evaluate(time + dt, stage, k);
-        for (var i = 0; i < n; i++)
-        {
-            next[i] += sixth * k[i];
-        }
+        VectorKernels.AddScaled(next, k, sixth);
     }
 }
