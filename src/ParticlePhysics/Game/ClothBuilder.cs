@@ -189,7 +189,7 @@ public sealed class ClothBuilder
     /// Builds the cloth alone in a new particle system: its particles, one spring network, linear drag and gravity,
     /// added in that order.
     /// </summary>
-    public Cloth Build()
+    public ParticleCloth Build()
     {
         Validate();
         var system = new ParticleSystem(ParticleCount);
@@ -199,7 +199,7 @@ public sealed class ClothBuilder
         system.AddForce(springs);
         system.AddForce(drag);
         system.AddForce(gravity);
-        return new Cloth(system, _rows, _columns, 0, springs, drag, gravity);
+        return new ParticleCloth(system, _rows, _columns, 0, springs, drag, gravity);
     }
 
     /// <summary>
@@ -207,7 +207,7 @@ public sealed class ClothBuilder
     /// network, and linear drag on its own particles. No gravity is added: the system's own gravity, if any, acts on
     /// the cloth (add one <see cref="Forces.Gravity"/> per system).
     /// </summary>
-    public Cloth AddTo(ParticleSystem system)
+    public ParticleCloth AddTo(ParticleSystem system)
     {
         Guard.NotNull(system, nameof(system));
         Validate();
@@ -222,7 +222,7 @@ public sealed class ClothBuilder
         var drag = new LinearDrag(_drag, system, particles);
         system.AddForce(springs);
         system.AddForce(drag);
-        return new Cloth(system, _rows, _columns, first, springs, drag, null);
+        return new ParticleCloth(system, _rows, _columns, first, springs, drag, null);
     }
 
     private static void CheckSide(int value, string name)

@@ -176,7 +176,7 @@ public class FixedTimestepDriverTests
         Assert.Equal(0, GC.GetAllocatedBytesForCurrentThread() - before);
     }
 
-    internal static Cloth SmallCloth() =>
+    internal static ParticleCloth SmallCloth() =>
         new ClothBuilder { Rows = 5, Columns = 6, Spacing = 0.1 }.Build();
 
     private static ParticleSystem FallingParticle()

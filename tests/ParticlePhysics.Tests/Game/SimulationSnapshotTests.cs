@@ -24,7 +24,7 @@ public class SimulationSnapshotTests
     public void Running_on_after_a_restore_matches_running_on_without_it(string integrator)
     {
         // The original run: 100 steps, a snapshot (saved to a stream), 100 more steps.
-        var original = Cloth();
+        var original = ClothSystem();
         var method = IntegratorCatalog.Create(integrator);
         StateMetrics.Run(original, method, 0.002, 100);
         var saved = new MemoryStream();
@@ -33,7 +33,7 @@ public class SimulationSnapshotTests
         StateMetrics.Run(original, method, 0.002, 100);
 
         // A new game: the same scene, a fresh integrator, restored from the stream.
-        var restored = Cloth();
+        var restored = ClothSystem();
         var fresh = IntegratorCatalog.Create(integrator);
         saved.Position = 0;
         SimulationSnapshot.ReadFrom(saved).RestoreTo(restored, fresh);
@@ -47,7 +47,7 @@ public class SimulationSnapshotTests
     [Fact]
     public void The_adaptive_integrators_step_size_is_part_of_the_state()
     {
-        var system = Cloth();
+        var system = ClothSystem();
         var rk45 = new DormandPrince45();
         StateMetrics.Run(system, rk45, 0.01, 5);
         var snapshot = SimulationSnapshot.Capture(system, rk45);
@@ -55,14 +55,14 @@ public class SimulationSnapshotTests
         Assert.Equal(rk45.CurrentStepSize, snapshot.IntegratorState[0]);
 
         var restored = new DormandPrince45();
-        snapshot.RestoreTo(Cloth(), restored);
+        snapshot.RestoreTo(ClothSystem(), restored);
         Assert.Equal(rk45.CurrentStepSize, restored.CurrentStepSize);
     }
 
     [Fact]
     public void A_round_trip_through_a_stream_is_bit_exact_for_time_state_masses_pins_and_integrator()
     {
-        var system = Cloth();
+        var system = ClothSystem();
         StateMetrics.Run(system, new RungeKutta4(), 0.001, 30);
         system.Unpin(0);
         system.Pin(7);
@@ -84,7 +84,7 @@ public class SimulationSnapshotTests
         Assert.Equal(1.0 / 3, read.IntegratorState[0]);
 
         // Into a freshly built cloth (pinned at its corners, other masses): everything comes back.
-        var target = Cloth();
+        var target = ClothSystem();
         read.RestoreTo(target);
         Assert.Equal(StateMetrics.BitHash(system.State), StateMetrics.BitHash(target.State));
         Assert.False(target.IsPinned(0));
@@ -96,7 +96,7 @@ public class SimulationSnapshotTests
     [Fact]
     public void Snapshots_follow_one_another_in_a_stream()
     {
-        var system = Cloth();
+        var system = ClothSystem();
         var stream = new MemoryStream();
         SimulationSnapshot.Capture(system).WriteTo(stream);
         StateMetrics.Run(system, new RungeKutta4(), 0.001, 10);
@@ -110,7 +110,7 @@ public class SimulationSnapshotTests
     [Fact]
     public void Capturing_and_restoring_in_memory_allocate_nothing()
     {
-        var system = Cloth();
+        var system = ClothSystem();
         var rk45 = new DormandPrince45();
         var snapshot = SimulationSnapshot.Capture(system, rk45);
         snapshot.RestoreTo(system, rk45);
@@ -134,7 +134,7 @@ public class SimulationSnapshotTests
     [InlineData(-1)]
     public void A_truncated_stream_is_refused(int length)
     {
-        var bytes = Serialized(Cloth(), new DormandPrince45());
+        var bytes = Serialized(ClothSystem(), new DormandPrince45());
         var cut = length < 0 ? bytes.Length + length : length;
         foreach (var seekable in new[] { true, false })
         {
@@ -162,7 +162,7 @@ public class SimulationSnapshotTests
     [Fact]
     public void A_payload_byte_flipped_is_reported_as_a_checksum_mismatch()
     {
-        var bytes = Serialized(Cloth(), null);
+        var bytes = Serialized(ClothSystem(), null);
         bytes[100] ^= 0x10;
         var e = Assert.Throws<InvalidDataException>(() => SimulationSnapshot.ReadFrom(new MemoryStream(bytes)));
         Assert.Contains("CRC-32", e.Message, StringComparison.Ordinal);
@@ -171,7 +171,7 @@ public class SimulationSnapshotTests
     [Fact]
     public void Wrong_magic_future_version_and_impossible_counts_are_named()
     {
-        var bytes = Serialized(Cloth(), null);
+        var bytes = Serialized(ClothSystem(), null);
         AssertInvalid(WithCrc(bytes, b => b[0] = (byte)'X'), "PPSN");
         AssertInvalid(WithCrc(bytes, b => b[4] = 2), "version 2, newer");
         AssertInvalid(WithCrc(bytes, b => b[4] = 0), "version 0");
@@ -184,7 +184,7 @@ public class SimulationSnapshotTests
     [Fact]
     public void Values_no_system_can_hold_are_refused_even_with_a_valid_checksum()
     {
-        var system = Cloth();
+        var system = ClothSystem();
         var bytes = Serialized(system, null);
         var n = system.Count;
         var masses = 28 + (48 * n);
@@ -198,10 +198,10 @@ public class SimulationSnapshotTests
     [Fact]
     public void A_snapshot_refuses_a_system_or_integrator_that_does_not_match_and_changes_nothing()
     {
-        var source = Cloth();
+        var source = ClothSystem();
         StateMetrics.Run(source, new RungeKutta4(), 0.001, 10);
         var snapshot = SimulationSnapshot.Capture(source, new RungeKutta4());
-        var target = Cloth();
+        var target = ClothSystem();
         StateMetrics.Run(target, new RungeKutta4(), 0.001, 3);
         var hash = StateMetrics.BitHash(target.State);
 
@@ -227,7 +227,7 @@ public class SimulationSnapshotTests
         Assert.True(target.IsPinned(0));
     }
 
-    private static ParticleSystem Cloth() => new ClothBuilder { Rows = 4, Columns = 5, Spacing = 0.1 }.Build().System;
+    private static ParticleSystem ClothSystem() => new ClothBuilder { Rows = 4, Columns = 5, Spacing = 0.1 }.Build().System;
 
     private static byte[] Serialized(ParticleSystem system, IIntegrator? integrator)
     {

@@ -6,11 +6,11 @@ namespace ParticlePhysics.Game;
 
 /// <summary>
 /// A cloth built by <see cref="ClothBuilder"/>: where its particles are in the system, the force generators that
-/// move it (retune them between steps), and its render mesh.
+/// move it (retune them between steps), and its render mesh. (Not named Cloth, which would clash with UnityEngine.Cloth.)
 /// </summary>
-public sealed class Cloth
+public sealed class ParticleCloth
 {
-    internal Cloth(
+    internal ParticleCloth(
         ParticleSystem system, int rows, int columns, int firstParticle, SpringNetwork springs, LinearDrag drag, Gravity? gravity)
     {
         System = system;
