@@ -109,7 +109,8 @@ public sealed class FixedTimestepDriver
     /// <returns>The number of fixed steps run.</returns>
     /// <exception cref="ArgumentOutOfRangeException"><paramref name="frameTime"/> is negative, NaN or infinite.</exception>
     /// <exception cref="SimulationDivergedException">
-    /// A step diverged: the system stays at its last good state, and the accumulator keeps the time of the steps not run.
+    /// A step diverged: the system stays at its last good state (with sub-steps, that of the last good sub-step), and
+    /// the accumulator keeps the time of the fixed steps not completed. Retry with more sub-steps or another integrator.
     /// </exception>
     public int Advance(double frameTime)
     {
@@ -140,16 +141,12 @@ public sealed class FixedTimestepDriver
 
         if (_accumulator >= dt)
         {
-            // Keep the fraction of a step, so that rendering stays smooth, and drop the whole steps.
-            var dropped = Math.Floor(_accumulator / dt) * dt;
-            _accumulator = Math.Max(0.0, _accumulator - dropped);
-            if (_accumulator >= dt)
-            {
-                _accumulator = 0.0;
-            }
-
-            LastDroppedTime = dropped;
-            TotalDroppedTime += dropped;
+            // Drop the whole steps and keep the fraction of a step, so that the interpolation stays smooth.
+            // % on doubles is fmod: exact, and in [0, dt) for a positive accumulator.
+            var remainder = _accumulator % dt;
+            LastDroppedTime = _accumulator - remainder;
+            TotalDroppedTime += LastDroppedTime;
+            _accumulator = remainder;
         }
 
         return steps;
