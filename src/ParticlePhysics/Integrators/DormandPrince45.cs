@@ -17,7 +17,7 @@ namespace ParticlePhysics.Integrators;
 /// Stability: adaptive, so it follows the fastest time scale of the system; on a stiff cloth it takes many
 /// small steps rather than diverging. Use <c>implicit-euler</c> for stiff systems at large steps.
 /// </remarks>
-public sealed class DormandPrince45 : IIntegrator
+public sealed class DormandPrince45 : IStatefulIntegrator
 {
     private const double Safety = 0.9;
     private const double MinFactor = 0.2;
@@ -139,6 +139,34 @@ public sealed class DormandPrince45 : IIntegrator
 
         _stepSize = h;
         y.AsSpan().CopyTo(next);
+    }
+
+    /// <inheritdoc />
+    /// <remarks>One value: <see cref="CurrentStepSize"/>, the internal step the next call starts from.</remarks>
+    public int StateLength => 1;
+
+    /// <inheritdoc />
+    public void WriteState(Span<double> destination)
+    {
+        if (destination.Length != StateLength)
+        {
+            throw new ArgumentException(
+                $"destination must hold exactly {StateLength} value; it holds {destination.Length}.", nameof(destination));
+        }
+
+        destination[0] = _stepSize;
+    }
+
+    /// <inheritdoc />
+    public void ReadState(ReadOnlySpan<double> source)
+    {
+        if (source.Length != StateLength)
+        {
+            throw new ArgumentException(
+                $"source must hold exactly {StateLength} value; it holds {source.Length}.", nameof(source));
+        }
+
+        CurrentStepSize = source[0];
     }
 
     private static double Ulp(double x) => Math.Max(double.Epsilon, x * 2.220446049250313e-16);

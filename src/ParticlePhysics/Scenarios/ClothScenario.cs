@@ -1,6 +1,6 @@
 using System;
 using System.Globalization;
-using ParticlePhysics.Forces;
+using ParticlePhysics.Game;
 
 namespace ParticlePhysics.Scenarios;
 
@@ -85,77 +85,25 @@ public sealed class ClothScenario
     public static int SpringCount(int n) => (2 * n * (n - 1)) + (2 * (n - 1) * (n - 1)) + (2 * n * Math.Max(0, n - 2));
 
     /// <summary>Builds the cloth: particles, one spring network, drag and gravity.</summary>
-    public ParticleSystem Build()
+    public ParticleSystem Build() => CreateBuilder().Build().System;
+
+    /// <summary>
+    /// A <see cref="ClothBuilder"/> set to this scenario's cloth, to build it with its mesh or change what the course
+    /// does not (spring families, extra pins, a rectangle).
+    /// </summary>
+    public ClothBuilder CreateBuilder()
     {
         var n = ParticlesPerSide;
-        var r = _resolution;
-        var system = new ParticleSystem(n * n);
-        var particleMass = _mass / (n * n);
-        for (var row = 0; row < n; row++)
+        var builder = new ClothBuilder
         {
-            for (var col = 0; col < n; col++)
-            {
-                system.AddParticle(new Vector3d(col * r, 0, row * r), particleMass);
-            }
-        }
-
-        switch (Pinning)
-        {
-            case ClothPinning.Corners:
-                system.Pin(0);
-                system.Pin(n - 1);
-                break;
-            case ClothPinning.Edge:
-                for (var col = 0; col < n; col++)
-                {
-                    system.Pin(col);
-                }
-
-                break;
-            case ClothPinning.None:
-                break;
-            default:
-                throw new ArgumentOutOfRangeException(nameof(Pinning), Pinning, "Pinning must be Corners, Edge or None.");
-        }
-
-        var springs = new SpringNetwork(system);
-        var diagonal = r * Math.Sqrt(2);
-        for (var row = 0; row < n; row++)
-        {
-            for (var col = 0; col < n; col++)
-            {
-                var i = (row * n) + col;
-                if (col + 1 < n)
-                {
-                    springs.Add(i, i + 1, _stiffness, r, _damping);
-                }
-
-                if (row + 1 < n)
-                {
-                    springs.Add(i, i + n, _stiffness, r, _damping);
-                }
-
-                if (row + 1 < n && col + 1 < n)
-                {
-                    springs.Add(i, i + n + 1, _stiffness, diagonal, _damping);
-                    springs.Add(i + 1, i + n, _stiffness, diagonal, _damping);
-                }
-
-                if (col + 2 < n)
-                {
-                    springs.Add(i, i + 2, _stiffness, 2 * r, _damping);
-                }
-
-                if (row + 2 < n)
-                {
-                    springs.Add(i, i + (2 * n), _stiffness, 2 * r, _damping);
-                }
-            }
-        }
-
-        system.AddForce(springs);
-        system.AddForce(new LinearDrag(_drag));
-        system.AddForce(Forces.Gravity.Down(_gravity));
-        return system;
+            Rows = n,
+            Columns = n,
+            Spacing = _resolution,
+            TotalMass = _mass,
+            Drag = _drag,
+            Gravity = _gravity,
+            Pinning = Pinning,
+        };
+        return builder.WithSprings(_stiffness, _damping);
     }
 }

@@ -1,0 +1,295 @@
+using System;
+using System.IO;
+using System.Text;
+using ParticlePhysics.Game;
+using ParticlePhysics.Integrators;
+using ParticlePhysics.Tests.Support;
+
+namespace ParticlePhysics.Tests.Game;
+
+/// <summary>Snapshots: bit-exact round trips in memory and on streams, and every kind of bad stream refused.</summary>
+public class SimulationSnapshotTests
+{
+    [Fact]
+    public void Crc32_matches_the_standard_check_value()
+    {
+        Assert.Equal(0xCBF43926u, Crc32.Compute(Encoding.ASCII.GetBytes("123456789")));
+        Assert.Equal(0u, Crc32.Compute(ReadOnlySpan<byte>.Empty));
+    }
+
+    [Theory]
+    [InlineData("rk4")]
+    [InlineData("rk45")]
+    [InlineData("velocity-verlet")]
+    public void Running_on_after_a_restore_matches_running_on_without_it(string integrator)
+    {
+        // The original run: 100 steps, a snapshot (saved to a stream), 100 more steps.
+        var original = ClothSystem();
+        var method = IntegratorCatalog.Create(integrator);
+        StateMetrics.Run(original, method, 0.002, 100);
+        var saved = new MemoryStream();
+        SimulationSnapshot.Capture(original, method).WriteTo(saved);
+        var atSnapshot = StateMetrics.BitHash(original.State);
+        StateMetrics.Run(original, method, 0.002, 100);
+
+        // A new game: the same scene, a fresh integrator, restored from the stream.
+        var restored = ClothSystem();
+        var fresh = IntegratorCatalog.Create(integrator);
+        saved.Position = 0;
+        SimulationSnapshot.ReadFrom(saved).RestoreTo(restored, fresh);
+        Assert.Equal(atSnapshot, StateMetrics.BitHash(restored.State));
+        Assert.Equal(100 * 0.002, restored.Time, 12);
+        StateMetrics.Run(restored, fresh, 0.002, 100);
+        Assert.Equal(StateMetrics.BitHash(original.State), StateMetrics.BitHash(restored.State));
+        Assert.Equal(original.Time, restored.Time);
+    }
+
+    [Fact]
+    public void The_adaptive_integrators_step_size_is_part_of_the_state()
+    {
+        var system = ClothSystem();
+        var rk45 = new DormandPrince45();
+        StateMetrics.Run(system, rk45, 0.01, 5);
+        var snapshot = SimulationSnapshot.Capture(system, rk45);
+        Assert.Equal("rk45", snapshot.IntegratorName);
+        Assert.Equal(rk45.CurrentStepSize, snapshot.IntegratorState[0]);
+
+        var restored = new DormandPrince45();
+        snapshot.RestoreTo(ClothSystem(), restored);
+        Assert.Equal(rk45.CurrentStepSize, restored.CurrentStepSize);
+    }
+
+    [Fact]
+    public void A_round_trip_through_a_stream_is_bit_exact_for_time_state_masses_pins_and_integrator()
+    {
+        var system = ClothSystem();
+        StateMetrics.Run(system, new RungeKutta4(), 0.001, 30);
+        system.Unpin(0);
+        system.Pin(7);
+        system.SetMass(3, 0.125);
+        system.SetVelocity(6, new Vector3d(double.Epsilon, -0.0, 1e300));
+        var rk45 = new DormandPrince45 { CurrentStepSize = 1.0 / 3 };
+        var snapshot = SimulationSnapshot.Capture(system, rk45);
+        var stream = new MemoryStream();
+        snapshot.WriteTo(stream);
+        Assert.Equal(snapshot.SerializedLength, stream.Length);
+
+        stream.Position = 0;
+        var read = SimulationSnapshot.ReadFrom(stream);
+        Assert.Equal(BitConverter.DoubleToInt64Bits(system.Time), BitConverter.DoubleToInt64Bits(read.Time));
+        Assert.Equal(StateMetrics.BitHash(snapshot.State), StateMetrics.BitHash(read.State));
+        Assert.Equal(StateMetrics.BitHash(snapshot.Masses), StateMetrics.BitHash(read.Masses));
+        Assert.True(snapshot.Pinned.SequenceEqual(read.Pinned));
+        Assert.Equal("rk45", read.IntegratorName);
+        Assert.Equal(1.0 / 3, read.IntegratorState[0]);
+
+        // Into a freshly built cloth (pinned at its corners, other masses): everything comes back.
+        var target = ClothSystem();
+        read.RestoreTo(target);
+        Assert.Equal(StateMetrics.BitHash(system.State), StateMetrics.BitHash(target.State));
+        Assert.False(target.IsPinned(0));
+        Assert.True(target.IsPinned(7));
+        Assert.Equal(0.125, target.GetMass(3));
+        Assert.Equal(system.Time, target.Time);
+    }
+
+    [Fact]
+    public void Snapshots_follow_one_another_in_a_stream()
+    {
+        var system = ClothSystem();
+        var stream = new MemoryStream();
+        SimulationSnapshot.Capture(system).WriteTo(stream);
+        StateMetrics.Run(system, new RungeKutta4(), 0.001, 10);
+        SimulationSnapshot.Capture(system).WriteTo(stream);
+        stream.Position = 0;
+        Assert.Equal(0.0, SimulationSnapshot.ReadFrom(stream).Time);
+        Assert.Equal(system.Time, SimulationSnapshot.ReadFrom(stream).Time);
+        Assert.Equal(stream.Length, stream.Position);
+    }
+
+    [Fact]
+    public void Capturing_and_restoring_in_memory_allocate_nothing()
+    {
+        var system = ClothSystem();
+        var rk45 = new DormandPrince45();
+        var snapshot = SimulationSnapshot.Capture(system, rk45);
+        snapshot.RestoreTo(system, rk45);
+        var before = GC.GetAllocatedBytesForCurrentThread();
+        for (var i = 0; i < 20; i++)
+        {
+            snapshot.CaptureFrom(system, rk45);
+            snapshot.RestoreTo(system, rk45);
+        }
+
+        Assert.Equal(0, GC.GetAllocatedBytesForCurrentThread() - before);
+    }
+
+    [Theory]
+    [InlineData(0)]
+    [InlineData(3)]
+    [InlineData(27)]
+    [InlineData(28)]
+    [InlineData(40)]
+    [InlineData(200)]
+    [InlineData(-1)]
+    public void A_truncated_stream_is_refused(int length)
+    {
+        var bytes = Serialized(ClothSystem(), new DormandPrince45());
+        var cut = length < 0 ? bytes.Length + length : length;
+        foreach (var seekable in new[] { true, false })
+        {
+            Stream stream = seekable ? new MemoryStream(bytes, 0, cut) : new ForwardOnlyStream(bytes, cut);
+            var e = Assert.Throws<InvalidDataException>(() => SimulationSnapshot.ReadFrom(stream));
+            Assert.Contains("truncated", e.Message, StringComparison.Ordinal);
+        }
+    }
+
+    [Fact]
+    public void Every_flipped_byte_is_refused()
+    {
+        var bytes = Serialized(new ClothBuilder { Rows = 2, Columns = 2 }.Build().System, new DormandPrince45());
+        for (var i = 0; i < bytes.Length; i++)
+        {
+            for (var bit = 0; bit < 8; bit += 7)
+            {
+                var damaged = (byte[])bytes.Clone();
+                damaged[i] ^= (byte)(1 << bit);
+                Assert.Throws<InvalidDataException>(() => SimulationSnapshot.ReadFrom(new MemoryStream(damaged)));
+            }
+        }
+    }
+
+    [Fact]
+    public void A_payload_byte_flipped_is_reported_as_a_checksum_mismatch()
+    {
+        var bytes = Serialized(ClothSystem(), null);
+        bytes[100] ^= 0x10;
+        var e = Assert.Throws<InvalidDataException>(() => SimulationSnapshot.ReadFrom(new MemoryStream(bytes)));
+        Assert.Contains("CRC-32", e.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void Wrong_magic_future_version_and_impossible_counts_are_named()
+    {
+        var bytes = Serialized(ClothSystem(), null);
+        AssertInvalid(WithCrc(bytes, b => b[0] = (byte)'X'), "PPSN");
+        AssertInvalid(WithCrc(bytes, b => b[4] = 2), "version 2, newer");
+        AssertInvalid(WithCrc(bytes, b => b[4] = 0), "version 0");
+        AssertInvalid(WithCrc(bytes, b => b[11] = 0x80), "particle count -");
+        AssertInvalid(WithCrc(bytes, b => b[8]++), "truncated");
+        AssertInvalid(WithCrc(bytes, b => b[8]--), "CRC-32");
+        AssertInvalid(WithCrc(bytes, b => b[19] = 0x7F), "integrator state length");
+    }
+
+    [Fact]
+    public void Values_no_system_can_hold_are_refused_even_with_a_valid_checksum()
+    {
+        var system = ClothSystem();
+        var bytes = Serialized(system, null);
+        var n = system.Count;
+        var masses = 28 + (48 * n);
+        AssertInvalid(WithCrc(bytes, b => BitConverter.TryWriteBytes(b.AsSpan(masses + 8), -1.0)), "Particle 1's mass");
+        AssertInvalid(WithCrc(bytes, b => BitConverter.TryWriteBytes(b.AsSpan(28 + 24), double.NaN)), "Particle 1's position");
+        AssertInvalid(WithCrc(bytes, b => BitConverter.TryWriteBytes(b.AsSpan(20), double.PositiveInfinity)), "time");
+        AssertInvalid(WithCrc(bytes, b => b[masses + (8 * n) + 2] = 2), "pinned flag");
+        AssertInvalid(WithCrc(bytes, b => BitConverter.TryWriteBytes(b.AsSpan(28 + (24 * n)), 1.0)), "Particle 0 is pinned");
+    }
+
+    [Fact]
+    public void A_snapshot_refuses_a_system_or_integrator_that_does_not_match_and_changes_nothing()
+    {
+        var source = ClothSystem();
+        StateMetrics.Run(source, new RungeKutta4(), 0.001, 10);
+        var snapshot = SimulationSnapshot.Capture(source, new RungeKutta4());
+        var target = ClothSystem();
+        StateMetrics.Run(target, new RungeKutta4(), 0.001, 3);
+        var hash = StateMetrics.BitHash(target.State);
+
+        var smaller = new ClothBuilder { Rows = 3, Columns = 3 }.Build().System;
+        var e = Assert.Throws<ArgumentException>(() => snapshot.RestoreTo(smaller));
+        Assert.Equal("system", e.ParamName);
+        Assert.Contains($"{source.Count} particles but the system has 9", e.Message, StringComparison.Ordinal);
+        Assert.Equal("integrator", Assert.Throws<ArgumentException>(() => snapshot.RestoreTo(target, new ExplicitEuler())).ParamName);
+        Assert.Equal(
+            "integrator",
+            Assert.Throws<ArgumentException>(() => SimulationSnapshot.Capture(source).RestoreTo(target, new DormandPrince45())).ParamName);
+
+        // A bad integrator value from a stream is refused by the integrator before the particles are touched.
+        var rk45 = new DormandPrince45 { CurrentStepSize = 0.5 };
+        var bytes = Serialized(source, rk45);
+        var damaged = WithCrc(bytes, b => BitConverter.TryWriteBytes(b.AsSpan(b.Length - 12), double.NaN));
+        var read = SimulationSnapshot.ReadFrom(new MemoryStream(damaged));
+        Assert.Throws<ArgumentOutOfRangeException>(() => read.RestoreTo(target, rk45));
+        Assert.Equal(0.5, rk45.CurrentStepSize);
+
+        Assert.Equal(hash, StateMetrics.BitHash(target.State));
+        Assert.Equal(3 * 0.001, target.Time, 15);
+        Assert.True(target.IsPinned(0));
+    }
+
+    private static ParticleSystem ClothSystem() => new ClothBuilder { Rows = 4, Columns = 5, Spacing = 0.1 }.Build().System;
+
+    private static byte[] Serialized(ParticleSystem system, IIntegrator? integrator)
+    {
+        var stream = new MemoryStream();
+        SimulationSnapshot.Capture(system, integrator).WriteTo(stream);
+        return stream.ToArray();
+    }
+
+    /// <summary>A copy with <paramref name="edit"/> applied and the checksum recomputed, to reach the checks after it.</summary>
+    private static byte[] WithCrc(byte[] bytes, Action<byte[]> edit)
+    {
+        var copy = (byte[])bytes.Clone();
+        edit(copy);
+        BitConverter.TryWriteBytes(copy.AsSpan(copy.Length - 4), Crc32.Compute(copy.AsSpan(0, copy.Length - 4)));
+        return copy;
+    }
+
+    private static void AssertInvalid(byte[] bytes, string expected)
+    {
+        var e = Assert.Throws<InvalidDataException>(() => SimulationSnapshot.ReadFrom(new MemoryStream(bytes)));
+        Assert.Contains(expected, e.Message, StringComparison.Ordinal);
+    }
+
+    /// <summary>A stream that cannot seek and returns at most 7 bytes per read, like a network stream.</summary>
+    private sealed class ForwardOnlyStream : Stream
+    {
+        private readonly byte[] _bytes;
+        private readonly int _length;
+        private int _position;
+
+        public ForwardOnlyStream(byte[] bytes, int length)
+        {
+            _bytes = bytes;
+            _length = length;
+        }
+
+        public override bool CanRead => true;
+
+        public override bool CanSeek => false;
+
+        public override bool CanWrite => false;
+
+        public override long Length => throw new NotSupportedException();
+
+        public override long Position { get => throw new NotSupportedException(); set => throw new NotSupportedException(); }
+
+        public override int Read(byte[] buffer, int offset, int count)
+        {
+            var n = Math.Min(Math.Min(count, 7), _length - _position);
+            Array.Copy(_bytes, _position, buffer, offset, n);
+            _position += n;
+            return n;
+        }
+
+        public override void Flush()
+        {
+        }
+
+        public override long Seek(long offset, SeekOrigin origin) => throw new NotSupportedException();
+
+        public override void SetLength(long value) => throw new NotSupportedException();
+
+        public override void Write(byte[] buffer, int offset, int count) => throw new NotSupportedException();
+    }
+}

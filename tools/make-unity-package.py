@@ -1,0 +1,180 @@
+#!/usr/bin/env python3
+"""Lay out ParticlePhysics as a Unity package (UPM) folder around the precompiled netstandard2.1 DLL.
+
+    python3 tools/make-unity-package.py                    # builds Release, writes artifacts/unity/com.particlephysics.core
+    python3 tools/make-unity-package.py --dll path/to/ParticlePhysics.dll --out DIR
+
+The folder holds package.json, README.md, LICENSE.md, Documentation~/unity.md and Runtime/ with the DLL and its
+XML docs, and a .meta file beside every asset and folder, as Unity requires in an immutable (git or registry)
+package. Each .meta's GUID is the MD5 of the package name and the asset's path, so it stays the same from run to
+run and from version to version: Unity keeps the references of scenes and prefabs to the plugin across upgrades.
+No .asmdef: Unity references a precompiled plugin DLL from every script assembly by itself (its PluginImporter
+meta says "Any platform"). Standard library only, so that it runs wherever the .NET SDK does.
+"""
+
+import argparse
+import hashlib
+import json
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+PACKAGE_NAME = "com.particlephysics.core"
+DISPLAY_NAME = "ParticlePhysics"
+UNITY_VERSION = "2021.3"
+ROOT = Path(__file__).resolve().parent.parent
+PROJECT = ROOT / "src" / "ParticlePhysics" / "ParticlePhysics.csproj"
+
+DESCRIPTION = (
+    "A particle (point mass) physics engine in double precision: a state-vector particle system, force generators "
+    "(gravity, drag, spring networks), Euler, Verlet and Runge-Kutta integrators, cloth with render meshes, a fixed-timestep "
+    "driver and save-game snapshots. Steps without allocating."
+)
+
+FOLDER_META = """fileFormatVersion: 2
+guid: {guid}
+folderAsset: yes
+DefaultImporter:
+  externalObjects: {{}}
+  userData:
+  assetBundleName:
+  assetBundleVariant:
+"""
+
+TEXT_META = """fileFormatVersion: 2
+guid: {guid}
+TextScriptImporter:
+  externalObjects: {{}}
+  userData:
+  assetBundleName:
+  assetBundleVariant:
+"""
+
+MANIFEST_META = """fileFormatVersion: 2
+guid: {guid}
+PackageManifestImporter:
+  externalObjects: {{}}
+  userData:
+  assetBundleName:
+  assetBundleVariant:
+"""
+
+# A managed plugin for every platform, editor included; validateReferences makes Unity check that everything it
+# references (netstandard only) resolves.
+PLUGIN_META = """fileFormatVersion: 2
+guid: {guid}
+PluginImporter:
+  externalObjects: {{}}
+  serializedVersion: 2
+  iconMap: {{}}
+  executionOrder: {{}}
+  defineConstraints: []
+  isPreloaded: 0
+  isOverridable: 0
+  isExplicitlyReferenced: 0
+  validateReferences: 1
+  platformData:
+  - first:
+      Any:
+    second:
+      enabled: 1
+      settings: {{}}
+  - first:
+      Editor: Editor
+    second:
+      enabled: 0
+      settings:
+        DefaultValueInitialized: true
+  userData:
+  assetBundleName:
+  assetBundleVariant:
+"""
+
+
+def guid(asset_path: str) -> str:
+    """A stable Unity GUID (32 hex digits) for an asset path relative to the package root."""
+    return hashlib.md5(f"{PACKAGE_NAME}/{asset_path}".encode("utf-8")).hexdigest()
+
+
+def project_version() -> str:
+    match = re.search(r"<Version>([^<]+)</Version>", PROJECT.read_text(encoding="utf-8"))
+    if not match:
+        sys.exit(f"error: no <Version> in {PROJECT}")
+    return match.group(1).strip()
+
+
+def build_dll(configuration: str) -> Path:
+    output = ROOT / "artifacts" / "unity-build"
+    subprocess.run(
+        ["dotnet", "build", str(PROJECT), "-c", configuration, "-o", str(output), "--nologo", "-v", "quiet"],
+        check=True,
+    )
+    return output / "ParticlePhysics.dll"
+
+
+def write(path: Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "w", encoding="utf-8", newline="\n") as f:
+        f.write(text)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--dll", type=Path, help="a built ParticlePhysics.dll (default: build src/ParticlePhysics)")
+    parser.add_argument("--out", type=Path, default=ROOT / "artifacts" / "unity",
+                        help="the folder to create the package folder in (default: artifacts/unity)")
+    parser.add_argument("--version", help="the package version (default: <Version> of the csproj)")
+    parser.add_argument("--configuration", default="Release", help="the build configuration (default: Release)")
+    args = parser.parse_args()
+
+    dll = args.dll.resolve() if args.dll else build_dll(args.configuration)
+    xml = dll.with_suffix(".xml")
+    for required in (dll, xml):
+        if not required.is_file():
+            sys.exit(f"error: {required} does not exist (build the core first, or omit --dll)")
+    version = args.version or project_version()
+    if not re.fullmatch(r"\d+\.\d+\.\d+(-[0-9A-Za-z.-]+)?", version):
+        sys.exit(f"error: version {version!r} is not a semantic version such as 1.2.3, as Unity requires")
+
+    package = args.out.resolve() / PACKAGE_NAME
+    if package.exists():
+        shutil.rmtree(package)
+    package.mkdir(parents=True)
+
+    manifest = {
+        "name": PACKAGE_NAME,
+        "version": version,
+        "displayName": DISPLAY_NAME,
+        "description": DESCRIPTION,
+        "unity": UNITY_VERSION,
+        "license": "MIT",
+        "keywords": ["physics", "particles", "cloth", "mass-spring", "integrator"],
+        "author": {"name": "The ParticlePhysics contributors"},
+    }
+    write(package / "package.json", json.dumps(manifest, indent=2) + "\n")
+    write(package / "package.json.meta", MANIFEST_META.format(guid=guid("package.json")))
+
+    for source, name in ((ROOT / "README.md", "README.md"), (ROOT / "LICENSE", "LICENSE.md")):
+        shutil.copyfile(source, package / name)
+        write(package / f"{name}.meta", TEXT_META.format(guid=guid(name)))
+
+    # Folders whose names end in ~ are ignored by Unity's importer: no .meta there.
+    (package / "Documentation~").mkdir()
+    shutil.copyfile(ROOT / "docs" / "unity.md", package / "Documentation~" / "unity.md")
+
+    runtime = package / "Runtime"
+    runtime.mkdir()
+    write(package / "Runtime.meta", FOLDER_META.format(guid=guid("Runtime")))
+    shutil.copyfile(dll, runtime / "ParticlePhysics.dll")
+    write(runtime / "ParticlePhysics.dll.meta", PLUGIN_META.format(guid=guid("Runtime/ParticlePhysics.dll")))
+    shutil.copyfile(xml, runtime / "ParticlePhysics.xml")
+    write(runtime / "ParticlePhysics.xml.meta", TEXT_META.format(guid=guid("Runtime/ParticlePhysics.xml")))
+
+    print(package)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
