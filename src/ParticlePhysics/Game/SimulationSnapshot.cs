@@ -41,8 +41,11 @@ public sealed class SimulationSnapshot
     /// <summary>The format version that <see cref="WriteTo"/> writes and <see cref="ReadFrom"/> reads.</summary>
     public const int FormatVersion = 1;
 
-    /// <summary>The largest integrator state, in doubles, that the binary format accepts.</summary>
-    public const int MaxIntegratorStateLength = 1024;
+    /// <summary>
+    /// The largest integrator state, in doubles, that the format accepts for <paramref name="particleCount"/>
+    /// particles: 1024 plus 6 per particle (an implicit integrator's warm start is a vector over the particles).
+    /// </summary>
+    public static int MaxIntegratorStateLength(int particleCount) => 1024 + (6 * Math.Max(0, particleCount));
 
     /// <summary>The largest integrator name, in UTF-8 bytes, that the binary format accepts.</summary>
     public const int MaxIntegratorNameLength = 256;
@@ -104,10 +107,11 @@ public sealed class SimulationSnapshot
         var n = system.Count;
         var stateful = integrator as IStatefulIntegrator;
         var m = stateful?.StateLength ?? 0;
-        if (m < 0 || m > MaxIntegratorStateLength)
+        if (m < 0 || m > MaxIntegratorStateLength(system.Count))
         {
             throw new ArgumentException(
-                $"The integrator's StateLength must be 0 to {MaxIntegratorStateLength}; got {m}.", nameof(integrator));
+                $"The integrator's StateLength must be 0 to {MaxIntegratorStateLength(system.Count)}; got {m}.",
+                nameof(integrator));
         }
 
         var name = integrator?.Name;
@@ -178,15 +182,8 @@ public sealed class SimulationSnapshot
                         nameof(integrator));
                 }
 
-                if (stateful.StateLength != _integratorState.Length)
-                {
-                    throw new ArgumentException(
-                        $"The snapshot holds {_integratorState.Length} values of integrator state; "
-                        + $"'{integrator.Name}' takes {stateful.StateLength}.",
-                        nameof(integrator));
-                }
-
-                // Checks its values before changing anything; the particle data below was checked when captured or read.
+                // Checks the length and the values before changing anything (the length may follow the system, as an
+                // implicit integrator's warm start does); the particle data below was checked when captured or read.
                 stateful.ReadState(_integratorState);
             }
             else if (_integratorState.Length != 0)
@@ -297,10 +294,10 @@ public sealed class SimulationSnapshot
                 $"The snapshot's integrator name length {nameLength} is impossible (0 to {MaxIntegratorNameLength} allowed).");
         }
 
-        if (m < 0 || m > MaxIntegratorStateLength)
+        if (m < 0 || m > MaxIntegratorStateLength(n))
         {
             throw new InvalidDataException(
-                $"The snapshot's integrator state length {m} is impossible (0 to {MaxIntegratorStateLength} allowed).");
+                $"The snapshot's integrator state length {m} is impossible (0 to {MaxIntegratorStateLength(n)} allowed).");
         }
 
         var total = HeaderSize + nameLength + (57 * n) + (8 * m) + ChecksumSize;

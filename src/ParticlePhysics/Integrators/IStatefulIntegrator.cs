@@ -13,15 +13,20 @@ namespace ParticlePhysics.Integrators;
 /// </remarks>
 public interface IStatefulIntegrator : IIntegrator
 {
-    /// <summary>The number of doubles in the state; fixed for a given integrator type.</summary>
+    /// <summary>
+    /// The number of doubles that <see cref="WriteState"/> writes now. Fixed for some integrators (the adaptive step
+    /// size of <see cref="DormandPrince45"/>); for others it follows the system they last stepped (the warm start
+    /// of <see cref="ImplicitEuler"/>, 3 values per particle).
+    /// </summary>
     int StateLength { get; }
 
     /// <summary>Writes the state into <paramref name="destination"/> (exactly <see cref="StateLength"/> values).</summary>
     void WriteState(Span<double> destination);
 
     /// <summary>
-    /// Replaces the state with <paramref name="source"/> (exactly <see cref="StateLength"/> values). Checks every
-    /// value first: a rejected call throws <see cref="ArgumentException"/> and changes nothing.
+    /// Replaces the state with <paramref name="source"/>, as some integrator of this type wrote it (its length need not
+    /// be the current <see cref="StateLength"/>). Checks the length and every value first: a rejected call throws
+    /// <see cref="ArgumentException"/> and changes nothing.
     /// </summary>
     void ReadState(ReadOnlySpan<double> source);
 }

@@ -21,7 +21,7 @@ namespace ParticlePhysics.Integrators;
 /// finite-difference Jacobian and a dense LU factorisation (fine for small systems such as the course's scalar ODE).
 /// Order 1. Stability: the whole left half-plane (A-stable), so any h is stable on a damped linear system.
 /// </remarks>
-public sealed class ImplicitEuler : IIntegrator
+public sealed class ImplicitEuler : IStatefulIntegrator
 {
     private readonly Dictionary<IForceGenerator, FiniteDifferenceJacobian> _finiteDifference = new();
     /// <summary>Newton's method on a plain ODE stops when its update is this small relative to 1 + |y|.</summary>
@@ -108,6 +108,51 @@ public sealed class ImplicitEuler : IIntegrator
 
     /// <summary>True when the last step's solve reached <see cref="Tolerance"/>.</summary>
     public bool LastConverged { get; private set; } = true;
+
+    /// <inheritdoc />
+    /// <remarks>
+    /// The warm start: 1 value (0, no warm start yet) or 1 + 3 N values (1, then the last step's dv), so that a
+    /// restored run continues bit for bit.
+    /// </remarks>
+    public int StateLength => _warm && _dv is not null ? 1 + _dv.Length : 1;
+
+    /// <inheritdoc />
+    public void WriteState(Span<double> destination)
+    {
+        if (destination.Length != StateLength)
+        {
+            throw new ArgumentException(
+                $"destination must hold exactly {StateLength} values; it holds {destination.Length}.", nameof(destination));
+        }
+
+        destination[0] = StateLength > 1 ? 1.0 : 0.0;
+        if (StateLength > 1)
+        {
+            _dv.AsSpan().CopyTo(destination.Slice(1));
+        }
+    }
+
+    /// <inheritdoc />
+    public void ReadState(ReadOnlySpan<double> source)
+    {
+        var valid = (source.Length == 1 && source[0] == 0.0)
+            || (source.Length > 1 && (source.Length - 1) % 3 == 0 && source[0] == 1.0
+                && DoubleChecks.FirstNonFinite(source.Slice(1)) < 0);
+        if (!valid)
+        {
+            throw new ArgumentException(
+                "An implicit-euler state is [0] (no warm start) or [1, then 3 finite values per particle]; "
+                + $"got {source.Length} values starting with {(source.Length > 0 ? Guard.Format(source[0]) : "nothing")}.",
+                nameof(source));
+        }
+
+        _warm = source.Length > 1;
+        if (_warm)
+        {
+            _dv = StepChecks.Sized(_dv, source.Length - 1);
+            source.Slice(1).CopyTo(_dv);
+        }
+    }
 
     /// <inheritdoc />
     public void Step(IOdeSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double dt)

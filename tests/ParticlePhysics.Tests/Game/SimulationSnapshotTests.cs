@@ -21,6 +21,7 @@ public class SimulationSnapshotTests
     [InlineData("rk4")]
     [InlineData("rk45")]
     [InlineData("velocity-verlet")]
+    [InlineData("implicit-euler")] // its warm start (the last dv) travels in the snapshot
     public void Running_on_after_a_restore_matches_running_on_without_it(string integrator)
     {
         // The original run: 100 steps, a snapshot (saved to a stream), 100 more steps.
@@ -42,6 +43,21 @@ public class SimulationSnapshotTests
         StateMetrics.Run(restored, fresh, 0.002, 100);
         Assert.Equal(StateMetrics.BitHash(original.State), StateMetrics.BitHash(restored.State));
         Assert.Equal(original.Time, restored.Time);
+    }
+
+    [Fact]
+    public void An_implicit_euler_state_that_it_could_not_have_written_is_refused_and_changes_nothing()
+    {
+        var implicitEuler = new ImplicitEuler();
+        var system = ClothSystem();
+        implicitEuler.ReadState(new double[] { 0 });
+        Assert.Equal(1, implicitEuler.StateLength);
+        Assert.Throws<ArgumentException>("source", () => implicitEuler.ReadState(new double[] { 1, 0.5 }));
+        Assert.Throws<ArgumentException>("source", () => implicitEuler.ReadState(new double[] { 1, 0, 0, double.NaN }));
+        Assert.Throws<ArgumentException>("source", () => implicitEuler.ReadState(new double[] { 2 }));
+        Assert.Equal(1, implicitEuler.StateLength);
+        StateMetrics.Run(system, implicitEuler, 1.0 / 60, 2);
+        Assert.Equal(1 + system.CoordinateCount, implicitEuler.StateLength);
     }
 
     [Fact]
