@@ -56,8 +56,11 @@ public class SimulationSnapshotTests
         Assert.Throws<ArgumentException>("source", () => implicitEuler.ReadState(new double[] { 1, 0, 0, double.NaN }));
         Assert.Throws<ArgumentException>("source", () => implicitEuler.ReadState(new double[] { 2 }));
         Assert.Equal(1, implicitEuler.StateLength);
-        StateMetrics.Run(system, implicitEuler, 1.0 / 60, 2);
-        Assert.Equal(1 + system.CoordinateCount, implicitEuler.StateLength);
+        StateMetrics.Run(system, implicitEuler, 1.0 / 60, 1);
+        Assert.Equal(1 + system.CoordinateCount, implicitEuler.StateLength);       // the last dv
+        StateMetrics.Run(system, implicitEuler, 1.0 / 60, 1);
+        Assert.Equal(1 + (2 * system.CoordinateCount), implicitEuler.StateLength); // and the one before
+        Assert.Throws<ArgumentException>("source", () => implicitEuler.ReadState(new double[] { 2, 1, 2, 3 }));
     }
 
     [Fact]
