@@ -1,0 +1,13 @@
+using ParticlePhysics.Demo.Running;
+
+namespace ParticlePhysics.Demo.Plotting;
+
+/// <summary>A chart of one run: it sees the output rows as they come and draws itself at the end.</summary>
+internal interface IRunPlot
+{
+    /// <summary>Sees one output row (the array is reused by the runner: copy what you keep).</summary>
+    void Add(double[] row);
+
+    /// <summary>The SVG document.</summary>
+    string ToSvg(RunOutcome outcome);
+}
