@@ -31,7 +31,7 @@ internal static class ConvergenceOutput
 
     private static void WriteTable(TextWriter output, ConvergenceStudy study)
     {
-        output.WriteLine($"convergence of {study.Setup.Name}: error at t = {Numbers.Brief(study.EndTime)} s (max abs over positions and velocities against the exact solution)");
+        output.WriteLine($"convergence of {study.Setup.Name}: error at t = {Numbers.Brief(study.EndTime)} s (max abs difference from the exact solution over the state: positions and velocities)");
         var table = new TextTable("integrator", ">dt (s)", ">steps", ">error", ">observed order", ">expected");
         foreach (var row in study.Rows)
         {

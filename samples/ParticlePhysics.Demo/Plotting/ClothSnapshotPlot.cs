@@ -17,27 +17,31 @@ internal sealed class ClothSnapshotPlot : IRunPlot
     private readonly ClothSetup _setup;
     private readonly RunPlan _plan;
     private readonly List<Snapshot> _snapshots = new();
-    private readonly double[] _targets;
+    private readonly int[] _steps;
     private Snapshot? _latest;
 
     public ClothSnapshotPlot(ClothSetup setup, RunPlan plan)
     {
         _setup = setup;
         _plan = plan;
-        _targets = new[] { 0, plan.EndTime / 3, 2 * plan.EndTime / 3 };
+        _steps = new[] { 0, (int)Math.Round(plan.Steps / 3.0), (int)Math.Round(2 * plan.Steps / 3.0), plan.Steps };
     }
+
+    public bool Wants(int step) => Array.IndexOf(_steps, step) >= 0 || _plan.IsOutputStep(step);
 
     public void Add(double[] row)
     {
-        var t = row[0];
-        if (_snapshots.Count < _targets.Length && t >= _targets[_snapshots.Count] - (1e-9 * _plan.Dt))
+        // Keep the snapshot steps, and the latest row in case the run diverges before its last snapshot.
+        var step = (int)Math.Round(row[0] / _plan.Dt);
+        if (Array.IndexOf(_steps, step) >= 0 && _snapshots.All(s => s.Time != row[0]))
         {
             _snapshots.Add(Take(row));
             _latest = null;
-            return;
         }
-
-        _latest = Take(row);
+        else
+        {
+            _latest = Take(row);
+        }
     }
 
     public string ToSvg(RunOutcome outcome)

@@ -26,6 +26,8 @@ internal sealed class TrajectoryPlot : IRunPlot
         _values = _indices.Select(_ => new List<double>()).ToArray();
     }
 
+    public bool Wants(int step) => _plan.IsOutputStep(step);
+
     public void Add(double[] row)
     {
         _time.Add(row[0]);

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Demo.Plotting;
 using ParticlePhysics.Integrators;
 
 namespace ParticlePhysics.Demo.Running;
@@ -15,7 +16,9 @@ internal static class Runner
     /// <param name="plan">The integrator, dt, steps and output stride.</param>
     /// <param name="onRow">Receives each output row (the array is reused: copy it to keep it), or null.</param>
     /// <param name="progress">Told about each step, or null.</param>
-    public static RunOutcome Run(ScenarioSetup setup, RunPlan plan, Action<double[]>? onRow, ProgressReporter? progress = null)
+    /// <param name="tap">A second observer that picks its own steps (a plot's snapshots), or null.</param>
+    public static RunOutcome Run(
+        ScenarioSetup setup, RunPlan plan, Action<double[]>? onRow, ProgressReporter? progress = null, IRunPlot? tap = null)
     {
         var simulation = setup.CreateSimulation();
         var integrator = IntegratorCatalog.Create(plan.Integrator, plan.Tolerance);
@@ -23,9 +26,24 @@ internal static class Runner
         var lastRowStep = -1;
         void Emit(int step)
         {
+            var output = plan.IsOutputStep(step);
+            var tapped = tap is not null && tap.Wants(step);
+            if (!output && !tapped)
+            {
+                return;
+            }
+
             setup.FillRow(simulation, step * plan.Dt, row);
             lastRowStep = step;
-            onRow?.Invoke(row);
+            if (output)
+            {
+                onRow?.Invoke(row);
+            }
+
+            if (tapped)
+            {
+                tap!.Add(row);
+            }
         }
 
         Emit(0);
@@ -48,10 +66,7 @@ internal static class Runner
                     row, good, good * plan.Dt, setup.ErrorAt(simulation, good * plan.Dt), new Divergence(step, step * plan.Dt, exception));
             }
 
-            if (plan.IsOutputStep(step))
-            {
-                Emit(step);
-            }
+            Emit(step);
 
             progress?.Report(step, plan.Steps);
         }

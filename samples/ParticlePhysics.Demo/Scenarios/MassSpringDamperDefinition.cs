@@ -27,7 +27,7 @@ internal sealed class MassSpringDamperDefinition : ScenarioDefinition
 
     public override double DefaultDuration => MassSpringDamperScenario.DefaultDuration;
 
-    public override double ConvergenceTimeStep => 0.1;
+    public override double ConvergenceTimeStep => 0.025;
 
     public override double ConvergenceDuration => 10;
 

@@ -21,6 +21,8 @@ internal sealed class ScalarOdeDefinition : ScenarioDefinition
 
     public override bool IsPlainOde => true;
 
+    public override double ConvergenceTimeStep => 0.05;
+
     public override IReadOnlyList<Option> PhysicsOptions => Array.Empty<Option>();
 
     protected override ScenarioSetup Build(ParseResult? parse) => new ScalarOdeSetup(new GaussianDecayOde());

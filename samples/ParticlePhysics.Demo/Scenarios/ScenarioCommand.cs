@@ -56,12 +56,9 @@ internal static class ScenarioCommand
         var outcome = Runner.Run(
             setup,
             plan,
-            row =>
-            {
-                writer.WriteRow(row);
-                plot?.Add(row);
-            },
-            context.Progress(scenario.Name));
+            writer.WriteRow,
+            context.Progress(scenario.Name),
+            plot);
         writer.End(outcome);
         if (plot is not null)
         {

@@ -32,7 +32,7 @@ internal sealed class TwoMassChainDefinition : ScenarioDefinition
 
     public override double DefaultDuration => TwoMassChainScenario.DefaultDuration;
 
-    public override double ConvergenceTimeStep => 0.05;
+    public override double ConvergenceTimeStep => 0.01;
 
     public override double ConvergenceDuration => 5;
 
