@@ -13,7 +13,7 @@ internal sealed class LineChart
     /// <summary>A colour-blind-safe palette (Okabe and Ito).</summary>
     public static readonly string[] Palette = { "#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9", "#000000" };
 
-    private const double Width = 760, Height = 460, Left = 80, Right = 210, Top = 40, Bottom = 60;
+    private const double Width = 820, Height = 460, Left = 80, Right = 250, Top = 40, Bottom = 60;
     private readonly List<Series> _series = new();
 
     public LineChart(string title, string xLabel, string yLabel, bool logX = false, bool logY = false)

@@ -8,6 +8,7 @@ namespace ParticlePhysics.Demo.Plotting;
 /// <summary>The heights against time, each computed curve solid and its exact counterpart dashed.</summary>
 internal sealed class TrajectoryPlot : IRunPlot
 {
+    private const int SmoothPoints = 400;
     private readonly ScenarioSetup _setup;
     private readonly RunPlan _plan;
     private readonly int[] _indices;
@@ -51,7 +52,11 @@ internal sealed class TrajectoryPlot : IRunPlot
             chart.Add($"{column} ({_plan.Integrator})", _time, _values[k++], color, markers: markers);
             if (exact is not null)
             {
-                chart.Add($"{column} exact", _time, _values[k++], "#555555", dashed: true);
+                // The exact curve on a fine grid of its own, so it stays smooth however few rows were printed.
+                k++;
+                var end = _time.Count == 0 ? 0 : _time[^1];
+                var times = Enumerable.Range(0, SmoothPoints + 1).Select(i => end * i / SmoothPoints).ToArray();
+                chart.Add($"{column} exact", times, times.Select(t => _setup.ExactValue(exact, t)).ToArray(), "#333333", dashed: true);
             }
         }
 

@@ -81,6 +81,23 @@ internal class ParticleSetup : ScenarioSetup
 
     public override ISimulation CreateSimulation() => new ParticleSimulation(_build());
 
+    protected override void FillExact(double time, Span<double> row)
+    {
+        if (Exact is null)
+        {
+            return;
+        }
+
+        var exact = new double[6 * _count];
+        Exact.ExactState(time, exact);
+        var k = 1 + (6 * _count);
+        for (var i = 0; i < _count; i++)
+        {
+            row[k++] = exact[(3 * i) + 1];
+            row[k++] = exact[(3 * _count) + (3 * i) + 1];
+        }
+    }
+
     public override void FillRow(ISimulation simulation, double time, Span<double> row)
     {
         var system = ((ParticleSimulation)simulation).System;

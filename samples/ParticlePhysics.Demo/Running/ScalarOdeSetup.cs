@@ -29,6 +29,13 @@ internal sealed class ScalarOdeSetup : ScenarioSetup
     public override ISimulation CreateSimulation() =>
         new OdeSimulationAdapter(new OdeSimulation(_ode, new[] { GaussianDecayOde.InitialValue }));
 
+    protected override void FillExact(double time, Span<double> row)
+    {
+        Span<double> exact = stackalloc double[1];
+        _ode.ExactState(time, exact);
+        row[2] = exact[0];
+    }
+
     public override void FillRow(ISimulation simulation, double time, Span<double> row)
     {
         Span<double> exact = stackalloc double[1];

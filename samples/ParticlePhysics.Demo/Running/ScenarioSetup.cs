@@ -37,6 +37,31 @@ internal abstract class ScenarioSetup
     /// <summary>The curves of a trajectory plot: a computed column and its exact counterpart (or null).</summary>
     public abstract IReadOnlyList<(string Column, string? Exact)> PlotSeries { get; }
 
+    /// <summary>The exact value of <paramref name="exactColumn"/> (one of the <c>..._exact</c> columns) at any time, for smooth plots.</summary>
+    public double ExactValue(string exactColumn, double time)
+    {
+        var row = new double[Columns.Count];
+        FillExact(time, row);
+        return row[IndexOf(exactColumn)];
+    }
+
+    /// <summary>The index of a column.</summary>
+    public int IndexOf(string column)
+    {
+        for (var i = 0; i < Columns.Count; i++)
+        {
+            if (Columns[i] == column)
+            {
+                return i;
+            }
+        }
+
+        throw new ArgumentException($"no column '{column}' in {Name}.", nameof(column));
+    }
+
+    /// <summary>Writes the exact columns of a row at <paramref name="time"/> (the other columns are left alone).</summary>
+    protected abstract void FillExact(double time, Span<double> row);
+
     /// <summary>Builds a fresh simulation at t = 0.</summary>
     public abstract ISimulation CreateSimulation();
 
