@@ -16,6 +16,6 @@ internal static class DivergenceMessage
         var stable = IntegratorCatalog.Names.Contains("implicit-euler") ? "implicit-euler" : "rk45 (adaptive)";
         var alternative = plan.Integrator == "implicit-euler" ? string.Empty : $", or --integrator {stable}";
         return $"error: simulation diverged at t={Numbers.RoundTrip(divergence.Time)} s ({plan.Integrator}, dt = {Numbers.RoundTrip(plan.Dt)} s: {who} {what}); "
-            + $"the rows already printed were kept (last good state: t={Numbers.RoundTrip((divergence.Step - 1) * plan.Dt)} s). Try a smaller --dt, such as {Numbers.RoundTrip(plan.Dt / 4)}{alternative}.";
+            + $"the rows already printed were kept (last good state: t={Numbers.Brief((divergence.Step - 1) * plan.Dt)} s). Try a smaller --dt, such as {Numbers.RoundTrip(plan.Dt / 4)}{alternative}.";
     }
 }

@@ -31,7 +31,8 @@ internal static class ConvergenceOutput
 
     private static void WriteTable(TextWriter output, ConvergenceStudy study)
     {
-        output.WriteLine($"convergence of {study.Setup.Name}: error at t = {Numbers.Brief(study.EndTime)} s (max abs difference from the exact solution over the state: positions and velocities)");
+        var over = study.Setup is Running.ScalarOdeSetup ? "abs difference from the exact solution" : "max abs difference from the exact solution over positions and velocities";
+        output.WriteLine($"convergence of {study.Setup.Name}: error at t = {Numbers.Brief(study.EndTime)} s ({over})");
         var table = new TextTable("integrator", ">dt (s)", ">steps", ">error", ">observed order", ">expected");
         foreach (var row in study.Rows)
         {
@@ -66,7 +67,7 @@ internal static class ConvergenceOutput
         output.WriteLine($"  \"end_time\": {Numbers.Json(study.EndTime)},");
         output.WriteLine($"  \"levels\": {Numbers.Json(study.Levels)},");
         var parameters = study.Setup.Parameters.Select(p => $"{JsonText.String(p.Key)}: {JsonText.Value(p.Value)}");
-        output.WriteLine($"  \"parameters\": {{ {string.Join(", ", parameters)} }},");
+        output.WriteLine(study.Setup.Parameters.Count == 0 ? "  \"parameters\": {}," : $"  \"parameters\": {{ {string.Join(", ", parameters)} }},");
         output.Write("  \"rows\": [");
         for (var i = 0; i < study.Rows.Count; i++)
         {

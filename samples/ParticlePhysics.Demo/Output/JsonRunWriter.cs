@@ -49,7 +49,7 @@ internal sealed class JsonRunWriter : IRunWriter
             o.Write($"{(i == 0 ? " " : ", ")}{JsonText.String(name)}: {JsonText.Value(value)}");
         }
 
-        o.WriteLine(" },");
+        o.WriteLine(setup.Parameters.Count == 0 ? "}," : " },");
         o.Write("  \"columns\": [");
         for (var i = 0; i < setup.Columns.Count; i++)
         {
