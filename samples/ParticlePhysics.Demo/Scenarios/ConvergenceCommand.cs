@@ -1,7 +1,6 @@
 using System;
 using System.Collections.Generic;
 using System.CommandLine;
-using System.IO;
 using System.Linq;
 using ParticlePhysics.Demo.Cli;
 using ParticlePhysics.Demo.Output;

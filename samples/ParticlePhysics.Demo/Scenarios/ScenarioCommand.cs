@@ -1,6 +1,4 @@
-using System;
 using System.CommandLine;
-using System.IO;
 using ParticlePhysics.Demo.Cli;
 using ParticlePhysics.Demo.Output;
 using ParticlePhysics.Demo.Plotting;

@@ -48,15 +48,24 @@ internal abstract class ScenarioDefinition
     public ScenarioSetup Configure(ParseResult? parse)
     {
         var setup = Build(parse);
-        setup.Parameters = ParameterValues(parse);
+        var given = ParameterValues(parse).ToList();
+        foreach (var derived in setup.Parameters)
+        {
+            // A value the setup worked out (a chain's default starting heights) replaces the option's "unset".
+            given.RemoveAll(p => p.Key == derived.Key);
+            given.Add(derived);
+        }
+
+        setup.Parameters = given;
         return setup;
     }
 
-    /// <summary>The parameters as run, for the JSON header: option name without dashes, and value.</summary>
+    /// <summary>The options' values, for the JSON header: option name without dashes, and value (unset options left out).</summary>
     public IReadOnlyList<KeyValuePair<string, object>> ParameterValues(ParseResult? parse) =>
         PhysicsOptions
-            .Select(o => new KeyValuePair<string, object>(o.Name.TrimStart('-'), ValueOf(parse, o)))
+            .Select(o => new KeyValuePair<string, object?>(o.Name.TrimStart('-'), ValueOf(parse, o)))
             .Where(p => p.Value is not null)
+            .Select(p => new KeyValuePair<string, object>(p.Key, p.Value!))
             .ToArray();
 
     /// <summary>Builds the setup; <paramref name="parse"/> is null for all defaults.</summary>
@@ -69,11 +78,11 @@ internal abstract class ScenarioDefinition
     /// <summary>The value given on the command line, or null (options without a fixed default).</summary>
     protected static double? Value(ParseResult? parse, Option<double?> option) => parse?.GetValue(option);
 
-    private static object ValueOf(ParseResult? parse, Option option) => option switch
+    private static object? ValueOf(ParseResult? parse, Option option) => option switch
     {
         Option<double> d => Value(parse, d),
-        Option<double?> n => (object?)Value(parse, n) ?? "default",
+        Option<double?> n => Value(parse, n),
         Option<string> s => Value(parse, s),
-        _ => string.Empty,
+        _ => null,
     };
 }

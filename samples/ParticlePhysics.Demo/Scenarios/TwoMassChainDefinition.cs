@@ -68,6 +68,11 @@ internal sealed class TwoMassChainDefinition : ScenarioDefinition
             TableColumnList = new[] { "t", "y0", "y1", "vy0", "vy1", "y0_exact", "y1_exact", "error" },
             SummaryColumnList = new[] { "y0", "y1", "vy0", "vy1" },
             PlotSeriesList = new (string, string?)[] { ("y0", "y0_exact"), ("y1", "y1_exact") },
+            Parameters = new[]
+            {
+                new KeyValuePair<string, object>("y1", scenario.Y1),
+                new KeyValuePair<string, object>("y2", scenario.Y2),
+            },
         };
     }
 }

@@ -42,6 +42,18 @@ public class DemoJsonTests
     }
 
     [Fact]
+    public void Json_parameters_hold_the_values_as_run_including_derived_starting_heights()
+    {
+        var result = DemoProcess.Run("two-mass-chain", "--format", "json", "--duration", "0.01", "--rest-length2", "0.5", "--k2", "20");
+
+        using var document = JsonDocument.Parse(result.Output);
+        var parameters = document.RootElement.GetProperty("parameters");
+        Assert.Equal(20.0, parameters.GetProperty("k2").GetDouble());
+        Assert.Equal(-1.0, parameters.GetProperty("y1").GetDouble()); // -L1
+        Assert.Equal(-1.5, parameters.GetProperty("y2").GetDouble()); // -L1 - L2
+    }
+
+    [Fact]
     public void Convergence_json_parses_and_has_one_row_per_integrator_and_level()
     {
         var result = DemoProcess.Run("convergence", "scalar-ode", "--format", "json", "--levels", "3");
