@@ -28,7 +28,18 @@ internal static class SummaryRun
             foreach (var integrator in scenario.Integrators)
             {
                 var plan = new RunPlan(integrator, scenario.DefaultTimeStep, steps, steps, 1e-8);
-                var outcome = Runner.Run(setup, plan, null, context.Progress($"{scenario.Name} {integrator}"));
+                RunOutcome outcome;
+                try
+                {
+                    outcome = Runner.Run(setup, plan, null, context.Progress($"{scenario.Name} {integrator}"));
+                }
+                catch (System.ArgumentException exception)
+                {
+                    // An integrator the catalog lists but that cannot take this system: say so in its row, run the rest.
+                    table.Add(scenario.Name, integrator, Numbers.Brief(plan.Dt), string.Empty, "does not apply: " + exception.Message.Split('\n')[0], "n/a");
+                    continue;
+                }
+
                 var error = outcome.Diverged is { } d
                     ? $"diverged at t = {Numbers.Brief(d.Time)}"
                     : outcome.FinalError is { } e ? Numbers.Error(e) : "n/a";

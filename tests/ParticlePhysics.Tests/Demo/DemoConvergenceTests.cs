@@ -51,4 +51,16 @@ public class DemoConvergenceTests
 
         Assert.Contains("observed order", result.OutputLines[1], StringComparison.Ordinal);
     }
+
+    [Fact]
+    public void A_level_that_diverges_is_marked_and_the_study_exits_with_3()
+    {
+        // Explicit Euler amplifies the oscillator at every step; at dt = 2 s it passes 1e12 long before t = 200 s.
+        var result = DemoProcess.Run("convergence", "mass-spring-damper", "--dt", "2", "--duration", "200", "--integrator", "explicit-euler");
+
+        Assert.Equal(3, result.ExitCode);
+        Assert.Equal(4, result.OutputLines.Count(l => l.StartsWith("explicit-euler ", StringComparison.Ordinal)));
+        Assert.Contains(result.OutputLines, l => l.StartsWith("explicit-euler ", StringComparison.Ordinal) && l.Contains("diverged", StringComparison.Ordinal));
+        Assert.StartsWith("error: simulation diverged at t=", Assert.Single(result.ErrorLines), StringComparison.Ordinal);
+    }
 }
