@@ -1,6 +1,7 @@
 using System;
 using System.Linq;
 using System.Text.Json;
+using ParticlePhysics.Integrators;
 
 namespace ParticlePhysics.Tests.Demo;
 
@@ -60,7 +61,11 @@ public class DemoJsonTests
 
         using var document = JsonDocument.Parse(result.Output);
         var rows = document.RootElement.GetProperty("rows").EnumerateArray().ToArray();
-        Assert.Equal(2 * 3, rows.Length); // explicit-euler and rk4 (rk45 is adaptive; the others need positions and velocities)
+        // Every fixed-step integrator that takes a plain ODE (rk45 is adaptive; two need positions and velocities).
+        var integrators = IntegratorCatalog.Names.Count(n => !IntegratorCatalog.NeedsSecondOrderSystem(n) && IntegratorCatalog.Create(n) is not DormandPrince45);
+        Assert.Equal(integrators * 3, rows.Length);
+        Assert.Contains(rows, r => r.GetProperty("integrator").GetString() == "explicit-euler");
+        Assert.DoesNotContain(rows, r => r.GetProperty("integrator").GetString() == "velocity-verlet");
         Assert.Equal(JsonValueKind.Null, rows[0].GetProperty("order").ValueKind);
         Assert.Equal(4.0, rows[^1].GetProperty("order").GetDouble(), 0.2);
     }
