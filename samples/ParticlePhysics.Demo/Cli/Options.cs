@@ -47,7 +47,7 @@ internal static class Options
 
                 if (!int.TryParse(text, NumberStyles.Integer, CultureInfo.InvariantCulture, out var value) || value < minimum)
                 {
-                    result.AddError($"{name} must be a whole number >= {minimum}; got '{text}'.");
+                    result.AddError($"{name} must be a whole number from {minimum} to {int.MaxValue}; got '{text}'.");
                     return null;
                 }
 

@@ -12,8 +12,9 @@ internal static class Summary
         var head = outcome.Diverged is null
             ? $"final state at t = {Numbers.Brief(outcome.FinalTime)} s: "
             : $"diverged at t = {Numbers.Brief(outcome.Diverged.Time)} s; last good state at t = {Numbers.Brief(outcome.FinalTime)} s: ";
+        var over = setup is ScalarOdeSetup ? string.Empty : " (max abs over positions and velocities)";
         var error = outcome.FinalError is { } e
-            ? $"; error against the exact solution (max abs over positions and velocities): {Numbers.Error(e)}"
+            ? $"; error against the exact solution{over}: {Numbers.Error(e)}"
             : string.Empty;
         return head + FinalState(setup, outcome.FinalRow) + error;
     }
