@@ -30,8 +30,8 @@ internal static class Options
             CustomParser = result => ParseNumber(result, name, unit, rule),
         };
 
-    /// <summary>A whole-number option that must be at least <paramref name="minimum"/>.</summary>
-    public static Option<int?> Count(string name, string description, int minimum, int? defaultValue = null)
+    /// <summary>A whole-number option from <paramref name="minimum"/> to <paramref name="maximum"/>.</summary>
+    public static Option<int?> Count(string name, string description, int minimum, int? defaultValue = null, int maximum = int.MaxValue)
     {
         var option = new Option<int?>(name)
         {
@@ -45,9 +45,9 @@ internal static class Options
                     return defaultValue;
                 }
 
-                if (!int.TryParse(text, NumberStyles.Integer, CultureInfo.InvariantCulture, out var value) || value < minimum)
+                if (!int.TryParse(text, NumberStyles.Integer, CultureInfo.InvariantCulture, out var value) || value < minimum || value > maximum)
                 {
-                    result.AddError($"{name} must be a whole number from {minimum} to {int.MaxValue}; got '{text}'.");
+                    result.AddError($"{name} must be a whole number from {minimum} to {maximum}; got '{text}'.");
                     return null;
                 }
 
