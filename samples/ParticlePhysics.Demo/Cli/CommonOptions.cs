@@ -1,0 +1,74 @@
+using System.Collections.Generic;
+using System.CommandLine;
+using System.Linq;
+using ParticlePhysics.Demo.Output;
+using ParticlePhysics.Demo.Scenarios;
+using ParticlePhysics.Integrators;
+
+namespace ParticlePhysics.Demo.Cli;
+
+/// <summary>The options every scenario command takes: integrator, time step, duration, output.</summary>
+internal sealed class CommonOptions
+{
+    public CommonOptions(ScenarioDefinition scenario)
+    {
+        Integrator = IntegratorOption(scenario, IntegratorCatalog.DefaultName, "The integrator");
+        Dt = Options.Number("--dt", "Time step (for rk45: the output interval)", "s", scenario.DefaultTimeStep, NumberRule.Positive);
+        Duration = Options.Number("--duration", "Simulated time; the last step ends at or just past it", "s", scenario.DefaultDuration, NumberRule.Positive);
+        Every = Options.Count("--every", "Print every N-th step (and always step 0 and the last) [default: near 200 rows]", 1);
+        Format = Options.Choice("--format", "Output: aligned table for people, csv or json for programs", OutputFormat.Default, OutputFormat.Names.ToArray());
+        Plot = PlotOption("A chart of the run: the trajectory against the exact solution, or snapshots of the cloth mesh");
+        Tolerance = Options.Number("--tolerance", "rk45's error bound per internal step (relative to 1 + |y|)", string.Empty, 1e-8, NumberRule.Positive);
+    }
+
+    public Option<string> Integrator { get; }
+
+    public Option<double> Dt { get; }
+
+    public Option<double> Duration { get; }
+
+    public Option<int?> Every { get; }
+
+    public Option<string> Format { get; }
+
+    public Option<string?> Plot { get; }
+
+    public Option<double> Tolerance { get; }
+
+    public IEnumerable<Option> All => new Option[] { Integrator, Dt, Duration, Every, Format, Plot, Tolerance };
+
+    /// <summary><c>--plot FILE.svg</c>.</summary>
+    public static Option<string?> PlotOption(string description) => new("--plot") { Description = description, HelpName = "FILE.svg" };
+
+    /// <summary>
+    /// <c>--integrator</c>: one of <see cref="IntegratorCatalog.Names"/> that applies to <paramref name="scenario"/>;
+    /// a catalog name that does not apply is refused with the reason.
+    /// </summary>
+    public static Option<string> IntegratorOption(ScenarioDefinition scenario, string? defaultName, string description)
+    {
+        var applicable = scenario.Integrators;
+        var option = new Option<string>("--integrator")
+        {
+            Description = $"{description}: {string.Join(", ", applicable)}",
+            HelpName = "name",
+        };
+        if (defaultName is not null)
+        {
+            option.DefaultValueFactory = _ => defaultName;
+        }
+
+        option.Validators.Add(result =>
+        {
+            var name = result.GetValueOrDefault<string>();
+            if (applicable.Contains(name))
+            {
+                return;
+            }
+
+            result.AddError(IntegratorCatalog.Names.Contains(name)
+                ? $"--integrator {name} does not apply to {scenario.Name}: it needs a position/velocity system and {scenario.Name} is a plain first-order ODE; use one of: {string.Join(", ", applicable)}."
+                : $"unknown integrator '{name}'{Suggestions.DidYouMean(name, applicable)}; expected one of: {string.Join(", ", applicable)}.");
+        });
+        return option;
+    }
+}

@@ -1,0 +1,21 @@
+using System.Linq;
+using ParticlePhysics.Demo.Output;
+using ParticlePhysics.Demo.Running;
+using ParticlePhysics.Integrators;
+
+namespace ParticlePhysics.Demo.Cli;
+
+/// <summary>The one-line report of a diverged run, with what to try next.</summary>
+internal static class DivergenceMessage
+{
+    public static string For(Divergence divergence, RunPlan plan)
+    {
+        var e = divergence.Exception;
+        var who = e.Particle >= 0 ? $"particle {e.Particle}" : $"state component {e.Component}";
+        var what = double.IsFinite(e.Value) ? $"reached {Numbers.Brief(e.Value)}, beyond the divergence limit" : $"became {Numbers.RoundTrip(e.Value)}";
+        var stable = IntegratorCatalog.Names.Contains("implicit-euler") ? "implicit-euler" : "rk45 (adaptive)";
+        var alternative = plan.Integrator == "implicit-euler" ? string.Empty : $", or --integrator {stable}";
+        return $"error: simulation diverged at t={Numbers.RoundTrip(divergence.Time)} s ({plan.Integrator}, dt = {Numbers.RoundTrip(plan.Dt)} s: {who} {what}); "
+            + $"the rows already printed were kept (last good state: t={Numbers.Brief((divergence.Step - 1) * plan.Dt)} s). Try a smaller --dt, such as {Numbers.RoundTrip(plan.Dt / 4)}{alternative}.";
+    }
+}

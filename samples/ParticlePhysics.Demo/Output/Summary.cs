@@ -1,0 +1,28 @@
+using System.Linq;
+using ParticlePhysics.Demo.Running;
+
+namespace ParticlePhysics.Demo.Output;
+
+/// <summary>One-line descriptions of a run's final state, for the table format and the default run's summary.</summary>
+internal static class Summary
+{
+    /// <summary>"final state at t = 10 s: y0 = 12.3, vy0 = -0.98; error against the exact solution: 1.23E-09".</summary>
+    public static string Describe(ScenarioSetup setup, RunOutcome outcome)
+    {
+        var head = outcome.Diverged is null
+            ? $"final state at t = {Numbers.Brief(outcome.FinalTime)} s: "
+            : $"diverged at t = {Numbers.Brief(outcome.Diverged.Time)} s; last good state at t = {Numbers.Brief(outcome.FinalTime)} s: ";
+        var over = setup is ScalarOdeSetup ? string.Empty : " (max abs over positions and velocities)";
+        var error = outcome.FinalError is { } e
+            ? $"; error against the exact solution{over}: {Numbers.Error(e)}"
+            : string.Empty;
+        return head + FinalState(setup, outcome.FinalRow) + error;
+    }
+
+    /// <summary>"y0 = 12.3, vy0 = -0.98": the scenario's summary columns.</summary>
+    public static string FinalState(ScenarioSetup setup, double[] row)
+    {
+        var columns = setup.Columns.ToList();
+        return string.Join(", ", setup.SummaryColumns.Select(c => $"{c} = {Numbers.Brief(row[columns.IndexOf(c)])}"));
+    }
+}

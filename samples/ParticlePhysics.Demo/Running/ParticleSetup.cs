@@ -1,0 +1,156 @@
+using System;
+using System.Collections.Generic;
+using System.Globalization;
+using ParticlePhysics.Scenarios;
+
+namespace ParticlePhysics.Demo.Running;
+
+/// <summary>
+/// The row layout of a particle scenario: <c>t</c>, then <c>x{i},y{i},z{i},vx{i},vy{i},vz{i}</c> per particle, then
+/// the exact values of the vertical components (<c>y{i}_exact</c>, <c>vy{i}_exact</c>) and <c>error</c> when there
+/// is an exact solution, then <c>energy</c> (kinetic + potential, J) and, for meshes, <c>min_y</c> and <c>max_speed</c>.
+/// </summary>
+internal class ParticleSetup : ScenarioSetup
+{
+    private readonly Func<ParticleSystem> _build;
+    private readonly int _count;
+    private readonly bool _meshColumns;
+    private readonly string[] _columns;
+    private double[] _exact = Array.Empty<double>();
+
+    /// <param name="name">The scenario's name.</param>
+    /// <param name="build">Builds a fresh system.</param>
+    /// <param name="count">The number of particles the system has.</param>
+    /// <param name="exact">The exact solution, or null.</param>
+    /// <param name="meshColumns">Adds <c>min_y</c> and <c>max_speed</c> (for the cloth).</param>
+    public ParticleSetup(string name, Func<ParticleSystem> build, int count, IExactSolution? exact, bool meshColumns = false)
+        : base(name, exact)
+    {
+        _build = build;
+        _meshColumns = meshColumns;
+        _count = count;
+        var columns = new List<string> { "t" };
+        for (var i = 0; i < _count; i++)
+        {
+            foreach (var component in new[] { "x", "y", "z", "vx", "vy", "vz" })
+            {
+                columns.Add(Invariant($"{component}{i}"));
+            }
+        }
+
+        if (exact is not null)
+        {
+            for (var i = 0; i < _count; i++)
+            {
+                columns.Add(Invariant($"y{i}_exact"));
+                columns.Add(Invariant($"vy{i}_exact"));
+            }
+
+            columns.Add("error");
+        }
+
+        columns.Add("energy");
+        if (meshColumns)
+        {
+            columns.Add("min_y");
+            columns.Add("max_speed");
+        }
+
+        _columns = columns.ToArray();
+    }
+
+    public override IReadOnlyList<string> Columns => _columns;
+
+    public override IReadOnlyList<string> TableColumns => TableColumnList ?? _columns;
+
+    public override IReadOnlyList<string> SummaryColumns => SummaryColumnList ?? _columns;
+
+    public override IReadOnlyList<(string Column, string? Exact)> PlotSeries => PlotSeriesList;
+
+    /// <summary>The columns of the table format.</summary>
+    public IReadOnlyList<string>? TableColumnList { get; init; }
+
+    /// <summary>The columns of the final-state summary.</summary>
+    public IReadOnlyList<string>? SummaryColumnList { get; init; }
+
+    /// <summary>The trajectory plot's curves.</summary>
+    public IReadOnlyList<(string Column, string? Exact)> PlotSeriesList { get; init; } = Array.Empty<(string, string?)>();
+
+    /// <summary>The number of particles.</summary>
+    public int ParticleCount => _count;
+
+    public override ISimulation CreateSimulation() => new ParticleSimulation(_build());
+
+    protected override void FillExact(double time, Span<double> row)
+    {
+        if (Exact is null)
+        {
+            return;
+        }
+
+        var exact = new double[6 * _count];
+        Exact.ExactState(time, exact);
+        var k = 1 + (6 * _count);
+        for (var i = 0; i < _count; i++)
+        {
+            row[k++] = exact[(3 * i) + 1];
+            row[k++] = exact[(3 * _count) + (3 * i) + 1];
+        }
+    }
+
+    public override void FillRow(ISimulation simulation, double time, Span<double> row)
+    {
+        var system = ((ParticleSimulation)simulation).System;
+        var positions = system.Positions;
+        var velocities = system.Velocities;
+        var k = 0;
+        row[k++] = time;
+        for (var i = 0; i < _count; i++)
+        {
+            for (var c = 0; c < 3; c++)
+            {
+                row[k++] = positions[(3 * i) + c];
+            }
+
+            for (var c = 0; c < 3; c++)
+            {
+                row[k++] = velocities[(3 * i) + c];
+            }
+        }
+
+        if (Exact is not null)
+        {
+            var state = system.State;
+            if (_exact.Length != state.Length)
+            {
+                _exact = new double[state.Length];
+            }
+
+            Exact.ExactState(time, _exact);
+            for (var i = 0; i < _count; i++)
+            {
+                row[k++] = _exact[(3 * i) + 1];
+                row[k++] = _exact[(3 * _count) + (3 * i) + 1];
+            }
+
+            row[k++] = MaxAbsDifference(state, _exact);
+        }
+
+        row[k++] = system.KineticEnergy() + system.PotentialEnergy();
+        if (_meshColumns)
+        {
+            double minY = double.PositiveInfinity, maxSpeed = 0;
+            for (var i = 0; i < _count; i++)
+            {
+                minY = Math.Min(minY, positions[(3 * i) + 1]);
+                var v = velocities.Slice(3 * i, 3);
+                maxSpeed = Math.Max(maxSpeed, Math.Sqrt((v[0] * v[0]) + (v[1] * v[1]) + (v[2] * v[2])));
+            }
+
+            row[k++] = minY;
+            row[k] = maxSpeed;
+        }
+    }
+
+    private static string Invariant(FormattableString text) => text.ToString(CultureInfo.InvariantCulture);
+}

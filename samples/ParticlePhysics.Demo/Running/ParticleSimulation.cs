@@ -1,0 +1,20 @@
+using System;
+using ParticlePhysics.Integrators;
+
+namespace ParticlePhysics.Demo.Running;
+
+/// <summary>A <see cref="ParticleSystem"/> seen as an <see cref="ISimulation"/>.</summary>
+internal sealed class ParticleSimulation : ISimulation
+{
+    public ParticleSimulation(ParticleSystem system)
+    {
+        System = system;
+    }
+
+    /// <summary>The particles, for the row layout (positions, velocities, energy).</summary>
+    public ParticleSystem System { get; }
+
+    public ReadOnlySpan<double> State => System.State;
+
+    public void Step(IIntegrator integrator, double dt) => System.Step(integrator, dt);
+}

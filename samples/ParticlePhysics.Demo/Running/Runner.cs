@@ -1,0 +1,77 @@
+using System;
+using ParticlePhysics.Demo.Plotting;
+using ParticlePhysics.Integrators;
+
+namespace ParticlePhysics.Demo.Running;
+
+/// <summary>
+/// The time loop, kept out of the integrators (as Boost.Odeint keeps its integrate loop apart from its steppers):
+/// steps a fresh simulation with a constant dt and hands the rows of step 0, every N-th step and the last step to
+/// an observer. Times are step * dt, never a running sum, so t = 0.3 prints as 0.3 and not 0.30000000000000004.
+/// </summary>
+internal static class Runner
+{
+    /// <summary>Runs <paramref name="setup"/> as <paramref name="plan"/> says; stops at the first diverged step.</summary>
+    /// <param name="setup">The scenario.</param>
+    /// <param name="plan">The integrator, dt, steps and output stride.</param>
+    /// <param name="onRow">Receives each output row (the array is reused: copy it to keep it), or null.</param>
+    /// <param name="progress">Told about each step, or null.</param>
+    /// <param name="tap">A second observer that picks its own steps (a plot's snapshots), or null.</param>
+    public static RunOutcome Run(
+        ScenarioSetup setup, RunPlan plan, Action<double[]>? onRow, ProgressReporter? progress = null, IRunPlot? tap = null)
+    {
+        var simulation = setup.CreateSimulation();
+        var integrator = IntegratorCatalog.Create(plan.Integrator, plan.Tolerance);
+        var row = new double[setup.Columns.Count];
+        var lastRowStep = -1;
+        void Emit(int step)
+        {
+            var output = plan.IsOutputStep(step);
+            var tapped = tap is not null && tap.Wants(step);
+            if (!output && !tapped)
+            {
+                return;
+            }
+
+            setup.FillRow(simulation, step * plan.Dt, row);
+            lastRowStep = step;
+            if (output)
+            {
+                onRow?.Invoke(row);
+            }
+
+            if (tapped)
+            {
+                tap!.Add(row);
+            }
+        }
+
+        Emit(0);
+        for (var step = 1; step <= plan.Steps; step++)
+        {
+            try
+            {
+                simulation.Step(integrator, plan.Dt);
+            }
+            catch (SimulationDivergedException exception)
+            {
+                progress?.Clear();
+                var good = step - 1;
+                if (lastRowStep != good)
+                {
+                    setup.FillRow(simulation, good * plan.Dt, row);
+                }
+
+                return new RunOutcome(
+                    row, good, good * plan.Dt, setup.ErrorAt(simulation, good * plan.Dt), new Divergence(step, step * plan.Dt, exception));
+            }
+
+            Emit(step);
+
+            progress?.Report(step, plan.Steps);
+        }
+
+        progress?.Clear();
+        return new RunOutcome(row, plan.Steps, plan.EndTime, setup.ErrorAt(simulation, plan.EndTime), null);
+    }
+}

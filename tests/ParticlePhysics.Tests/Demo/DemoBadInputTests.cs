@@ -1,0 +1,71 @@
+using System;
+
+namespace ParticlePhysics.Tests.Demo;
+
+/// <summary>A bad command line: exit code 2, nothing on stdout, one line on stderr starting with "error:" that names the value.</summary>
+public class DemoBadInputTests
+{
+    [Theory]
+    [InlineData("unknown scenario", "fre-fall", "free-fall")]
+    [InlineData("unknown option", "free-fall --dtt 0.1", "--dtt", "--dt")]
+    [InlineData("unknown integrator", "free-fall --integrator rk5", "rk5", "rk4", "explicit-euler")]
+    [InlineData("unknown format", "cloth --format xml", "xml", "table, csv, json")]
+    [InlineData("zero dt", "free-fall --dt 0", "--dt", "'0'", "positive")]
+    [InlineData("negative dt", "mass-spring-damper --dt -0.01", "--dt", "-0.01")]
+    [InlineData("NaN dt", "free-fall --dt NaN", "--dt", "NaN")]
+    [InlineData("text for a number", "free-fall --duration ten", "--duration", "ten")]
+    [InlineData("infinite duration", "scalar-ode --duration Infinity", "--duration", "Infinity")]
+    [InlineData("zero mass", "free-fall --mass 0", "--mass", "'0'")]
+    [InlineData("negative mass", "two-mass-chain --m2 -1", "--m2", "-1")]
+    [InlineData("zero size", "cloth --size 0", "--size", "'0'")]
+    [InlineData("negative stiffness", "mass-spring-damper --stiffness -1", "--stiffness", "-1", ">= 0")]
+    [InlineData("negative damping", "cloth --damping -0.5", "--damping", "-0.5")]
+    [InlineData("negative drag", "free-fall --drag -0.01", "--drag", "-0.01")]
+    [InlineData("resolution that does not divide the size", "cloth --resolution 0.3", "--resolution", "0.3", "--size")]
+    [InlineData("integrator that needs positions and velocities", "scalar-ode --integrator semi-implicit-euler", "semi-implicit-euler", "scalar-ode", "rk4")]
+    [InlineData("velocity verlet on the scalar ode", "scalar-ode --integrator velocity-verlet", "velocity-verlet", "explicit-euler")]
+    [InlineData("convergence of a scenario without exact solution", "convergence cloth", "cloth", "free-fall")]
+    [InlineData("convergence without a scenario", "convergence", "convergence", "scalar-ode")]
+    [InlineData("bad every", "free-fall --every 0", "--every", "'0'")]
+    [InlineData("bad levels", "convergence free-fall --levels 1", "--levels", "'1'", "2 to 16")]
+    [InlineData("too many levels", "convergence free-fall --levels 17", "--levels", "'17'")]
+    [InlineData("bad pin", "cloth --pin corner", "corner", "corners, edge, none")]
+    [InlineData("option without its value", "free-fall --dt", "--dt")]
+    [InlineData("stray argument", "free-fall 0.01", "0.01")]
+    [InlineData("plot into a missing folder", "free-fall --plot /no/such/folder/x.svg", "/no/such/folder/x.svg")]
+    public void Is_refused_with_one_error_line_and_exit_code_2(string what, string commandLine, params string[] mentioned)
+    {
+        var result = DemoProcess.Run(commandLine.Split(' '));
+
+        Assert.True(result.ExitCode == 2, $"{what}: exit code {result.ExitCode}, stderr: {result.Error}");
+        Assert.Equal("", result.Output);
+        var line = Assert.Single(result.ErrorLines);
+        Assert.StartsWith("error: ", line, StringComparison.Ordinal);
+        foreach (var text in mentioned)
+        {
+            Assert.Contains(text, line, StringComparison.Ordinal);
+        }
+
+        Assert.DoesNotContain("   at ", result.Error, StringComparison.Ordinal); // no stack trace
+    }
+
+    [Fact]
+    public void A_misspelled_option_gets_a_suggestion()
+    {
+        var result = DemoProcess.Run("mass-spring-damper", "--stifness", "3");
+
+        Assert.Equal(2, result.ExitCode);
+        Assert.Contains("did you mean '--stiffness'?", result.Error, StringComparison.Ordinal);
+    }
+
+    [Fact]
+    public void Negative_numbers_are_values_where_they_are_allowed()
+    {
+        var result = DemoProcess.Run("mass-spring-damper", "--y0", "-2", "--v0", "-1.5", "--format", "csv", "--duration", "0.01");
+
+        Assert.Equal(0, result.ExitCode);
+        var (_, rows) = result.Csv();
+        Assert.Equal(-2.0, rows[0][2]);
+        Assert.Equal(-1.5, rows[0][5]);
+    }
+}
