@@ -26,6 +26,7 @@ public sealed class SimulationDivergedException : Exception
         Component = component;
         Particle = particle;
         Value = value;
+        Limit = limit;
     }
 
     /// <summary>The time the failed step was to reach, in seconds.</summary>
@@ -42,6 +43,9 @@ public sealed class SimulationDivergedException : Exception
 
     /// <summary>The offending value: NaN, infinite, or finite but beyond the divergence limit.</summary>
     public double Value { get; }
+
+    /// <summary>The divergence limit in force (<see cref="ParticleSystem.DivergenceLimit"/>).</summary>
+    public double Limit { get; }
 
     private static string BuildMessage(
         double time, double lastFiniteTime, int component, int particle, double value, double limit)

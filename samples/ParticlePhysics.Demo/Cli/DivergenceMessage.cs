@@ -1,7 +1,5 @@
-using System.Linq;
 using ParticlePhysics.Demo.Output;
 using ParticlePhysics.Demo.Running;
-using ParticlePhysics.Integrators;
 
 namespace ParticlePhysics.Demo.Cli;
 
@@ -12,9 +10,10 @@ internal static class DivergenceMessage
     {
         var e = divergence.Exception;
         var who = e.Particle >= 0 ? $"particle {e.Particle}" : $"state component {e.Component}";
-        var what = double.IsFinite(e.Value) ? $"reached {Numbers.Brief(e.Value)}, beyond the divergence limit" : $"became {Numbers.RoundTrip(e.Value)}";
-        var stable = IntegratorCatalog.Names.Contains("implicit-euler") ? "implicit-euler" : "rk45 (adaptive)";
-        var alternative = plan.Integrator == "implicit-euler" ? string.Empty : $", or --integrator {stable}";
+        var what = double.IsFinite(e.Value)
+            ? $"reached {Numbers.Brief(e.Value)}, beyond the divergence limit {Numbers.Brief(e.Limit)}"
+            : $"became {Numbers.RoundTrip(e.Value)}";
+        var alternative = plan.Integrator == "implicit-euler" ? string.Empty : ", or --integrator implicit-euler";
         return $"error: simulation diverged at t={Numbers.RoundTrip(divergence.Time)} s ({plan.Integrator}, dt = {Numbers.RoundTrip(plan.Dt)} s: {who} {what}); "
             + $"the rows already printed were kept (last good state: t={Numbers.Brief((divergence.Step - 1) * plan.Dt)} s). Try a smaller --dt, such as {Numbers.RoundTrip(plan.Dt / 4)}{alternative}.";
     }

@@ -58,7 +58,7 @@ internal static class ConvergenceCommand
 
             var names = parse.GetValue(integrator) is { } one
                 ? new[] { one }
-                : scenario.Integrators.Where(n => IntegratorCatalog.Create(n) is not DormandPrince45).ToArray();
+                : scenario.Integrators.Where(n => !IntegratorCatalog.IsAdaptive(n)).ToArray();
             var study = Run(scenario.Configure(parse), names, parse.GetValue(dt), parse.GetValue(duration), count, parse.GetValue(tolerance));
             ConvergenceOutput.Write(parse.GetValue(format)!, context.Output, study);
             if (parse.GetValue(plot) is { } path)

@@ -23,6 +23,19 @@ public static class IntegratorCatalog
     public static bool NeedsSecondOrderSystem(string name) =>
         name is "semi-implicit-euler" or "velocity-verlet";
 
+    /// <summary>
+    /// True for the adaptive integrators (<c>rk45</c>), whose error follows their tolerance rather than the step
+    /// they are given, which is then only the output interval.
+    /// </summary>
+    public static bool IsAdaptive(string name) => name == "rk45";
+
+    /// <summary>True when the integrator <paramref name="name"/> can advance <paramref name="system"/>.</summary>
+    public static bool AppliesTo(string name, IOdeSystem system)
+    {
+        Guard.NotNull(system, nameof(system));
+        return Array.IndexOf(_names, name) >= 0 && (system is ISecondOrderSystem || !NeedsSecondOrderSystem(name));
+    }
+
     /// <summary>Creates a new integrator (each owns its scratch buffers, so use one per system).</summary>
     /// <param name="name">One of <see cref="Names"/>.</param>
     /// <param name="tolerance">The error bound per step for <c>rk45</c>; ignored by the fixed-step integrators.</param>

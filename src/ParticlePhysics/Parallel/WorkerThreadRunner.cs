@@ -14,7 +14,9 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
 {
     private readonly Thread[] _threads;
     private readonly SemaphoreSlim _start = new(0);
-    private readonly ManualResetEventSlim _finished = new(false);
+    // The last worker to finish releases this. (A SemaphoreSlim creates its lock in its constructor; a
+    // ManualResetEventSlim would allocate one the first time a wait blocks, in the middle of a simulation.)
+    private readonly SemaphoreSlim _finished = new(0);
     private IParallelWork? _work;
     private int _chunkCount;
     private int _nextChunk;
@@ -73,7 +75,6 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
         _nextChunk = 0;
         _failure = null;
         _busyWorkers = _threads.Length;
-        _finished.Reset();
         _start.Release(_threads.Length);
         Drain(work, chunkCount);
         _finished.Wait();
@@ -113,7 +114,7 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
             Drain(_work!, _chunkCount);
             if (Interlocked.Decrement(ref _busyWorkers) == 0)
             {
-                _finished.Set();
+                _finished.Release();
             }
         }
     }
