@@ -93,7 +93,7 @@ internal static class Options
         }
 
         var text = result.Tokens[0].Value;
-        var parsed = double.TryParse(text, NumberStyles.Float, CultureInfo.InvariantCulture, out var value);
+        var parsed = TryParseNumber(text, out var value);
         var ok = parsed && double.IsFinite(value) && rule switch
         {
             NumberRule.Positive => value > 0,
@@ -109,10 +109,34 @@ internal static class Options
                 _ => "a finite number",
             };
             var units = unit.Length == 0 ? string.Empty : $" ({unit})";
-            result.AddError($"{name} must be {allowed}{units}; got '{text}'.");
+            result.AddError($"{name} must be {allowed}{units}, as a decimal or a fraction such as 1/127; got '{text}'.");
             return null;
         }
 
         return value;
+    }
+
+    /// <summary>
+    /// A number in the invariant culture, or a fraction p/q of two such numbers (so that --resolution 1/127 gives
+    /// the spacing of a 128 x 128 cloth exactly as the division does).
+    /// </summary>
+    internal static bool TryParseNumber(string text, out double value)
+    {
+        var slash = text.IndexOf('/', StringComparison.Ordinal);
+        if (slash < 0)
+        {
+            return double.TryParse(text, NumberStyles.Float, CultureInfo.InvariantCulture, out value);
+        }
+
+        value = double.NaN;
+        if (!double.TryParse(text.AsSpan(0, slash), NumberStyles.Float, CultureInfo.InvariantCulture, out var numerator)
+            || !double.TryParse(text.AsSpan(slash + 1), NumberStyles.Float, CultureInfo.InvariantCulture, out var denominator)
+            || denominator == 0)
+        {
+            return false;
+        }
+
+        value = numerator / denominator;
+        return true;
     }
 }

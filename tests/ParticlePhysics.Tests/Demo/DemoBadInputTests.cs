@@ -14,6 +14,9 @@ public class DemoBadInputTests
     [InlineData("negative dt", "mass-spring-damper --dt -0.01", "--dt", "-0.01")]
     [InlineData("NaN dt", "free-fall --dt NaN", "--dt", "NaN")]
     [InlineData("text for a number", "free-fall --duration ten", "--duration", "ten")]
+    [InlineData("fraction over zero", "cloth --resolution 1/0", "--resolution", "'1/0'", "fraction")]
+    [InlineData("half a fraction", "free-fall --dt 1/", "--dt", "'1/'")]
+    [InlineData("negative fraction", "free-fall --dt -1/100", "--dt", "'-1/100'", "positive")]
     [InlineData("infinite duration", "scalar-ode --duration Infinity", "--duration", "Infinity")]
     [InlineData("zero mass", "free-fall --mass 0", "--mass", "'0'")]
     [InlineData("negative mass", "two-mass-chain --m2 -1", "--m2", "-1")]
@@ -47,6 +50,17 @@ public class DemoBadInputTests
         }
 
         Assert.DoesNotContain("   at ", result.Error, StringComparison.Ordinal); // no stack trace
+    }
+
+    [Fact]
+    public void A_fraction_is_a_number_so_1_over_127_gives_the_128_by_128_cloth()
+    {
+        var result = DemoProcess.Run("cloth", "--resolution", "1/127", "--dt", "0.0001", "--duration", "0.0002", "--format", "csv");
+
+        Assert.True(result.ExitCode == 0, result.Error);
+        var header = result.Output.Split('\n')[0].Split(',');
+        Assert.Contains("vz16383", header);
+        Assert.DoesNotContain("x16384", header);
     }
 
     [Fact]
