@@ -1,0 +1,22 @@
+using BenchmarkDotNet.Configs;
+using ParticlePhysics.Benchmarks.Columns;
+
+namespace ParticlePhysics.Benchmarks;
+
+/// <summary>The computed columns of the cloth-step benchmarks: time per particle and per spring evaluation.</summary>
+public sealed class ClothColumnsConfig : ManualConfig
+{
+    public ClothColumnsConfig()
+    {
+        AddColumn(PerWorkColumn.PerParticle, PerWorkColumn.PerSpringEvaluation);
+    }
+}
+
+/// <summary>The computed columns of the integrator benchmarks: the time step used and the cost per simulated second.</summary>
+public sealed class IntegratorColumnsConfig : ManualConfig
+{
+    public IntegratorColumnsConfig()
+    {
+        AddColumn(SimulatedTimeColumn.TimeStep, SimulatedTimeColumn.CostPerSimulatedSecond);
+    }
+}
