@@ -8,9 +8,8 @@ namespace ParticlePhysics.Benchmarks;
 /// state, so that every benchmark invocation starts from the same flat cloth at rest.
 /// </summary>
 /// <remarks>
-/// Why a reset: at dt = 1 ms the explicit integrators are at or past their stability limit on the finer cloths
-/// (see the stability mode), and a benchmark runs hundreds of thousands of steps; stepping one system for that long
-/// would end in divergence or measure a cloth that has come to rest. Each invocation therefore runs
+/// Why a reset: a benchmark runs hundreds of thousands of steps; stepping one system for that long would measure a
+/// cloth that has come to rest, or, for an integrator near its stability limit, end in divergence. Each invocation therefore runs
 /// <see cref="StepsPerInvoke"/> steps from the initial state: <see cref="Reset"/> (SetState, a checked copy of 6 N
 /// doubles) costs well under 1 % of 16 RK4 steps, and the <c>Reset</c> benchmark measures it so it can be subtracted.
 /// </remarks>
@@ -19,8 +18,22 @@ internal sealed class ClothFixture
     /// <summary>The steps run by one benchmark invocation before the state is reset (the OperationsPerInvoke).</summary>
     public const int StepsPerInvoke = 16;
 
-    /// <summary>The time step of the cloth benchmarks, the scenario's default: 1 ms.</summary>
-    public const double TimeStep = ClothScenario.DefaultTimeStep;
+    /// <summary>
+    /// The RK4 step of the n x n cloth benchmarks: the scenario's default 1 ms up to n = 64, then 1 ms (64 / n)^2
+    /// (0.25 ms at n = 128, 62.5 us at n = 256).
+    /// </summary>
+    /// <remarks>
+    /// With M = 1 kg spread over n^2 particles and k, c fixed per spring, a particle's spring frequency grows as
+    /// sqrt(k n^2 / M) ~ n but its axial damping rate c n^2 / M grows as n^2, and on the finer cloths the damping
+    /// sets RK4's limit (the real-axis bound 2.78 / rate): about 2 ms at n = 64 (stability mode), between 0.5 and
+    /// 1 ms at n = 128 and between 0.125 and 0.25 ms at n = 256 (16 steps from rest pass 1e26 beyond that).
+    /// 1 ms (64 / n)^2 stays well inside the limit, so the measured state is finite and physical; the cost of a
+    /// step does not depend on dt (no branch does, but l = 0). The C reference uses the same rule.
+    /// </remarks>
+    public static double Rk4TimeStep(int particlesPerSide) =>
+        particlesPerSide <= 64
+            ? ClothScenario.DefaultTimeStep
+            : ClothScenario.DefaultTimeStep * (64.0 / particlesPerSide) * (64.0 / particlesPerSide);
 
     private readonly double[] _initial;
 
@@ -32,12 +45,16 @@ internal sealed class ClothFixture
         }
 
         ParticlesPerSide = particlesPerSide;
+        TimeStep = Rk4TimeStep(particlesPerSide);
         Scenario = new ClothScenario { Resolution = 1.0 / (particlesPerSide - 1) };
         System = Scenario.Build();
         _initial = System.State.ToArray();
     }
 
     public int ParticlesPerSide { get; }
+
+    /// <summary>The RK4 time step of this cloth: <see cref="Rk4TimeStep"/>.</summary>
+    public double TimeStep { get; }
 
     public int ParticleCount => ParticlesPerSide * ParticlesPerSide;
 

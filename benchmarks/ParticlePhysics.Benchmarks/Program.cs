@@ -17,7 +17,8 @@ namespace ParticlePhysics.Benchmarks;
 /// <list type="bullet">
 /// <item><c>verify</c>: checks that the student baseline, Math.NET and the library give the same cloth, and that a
 /// library step allocates nothing; exits 1 if not.</item>
-/// <item><c>stability [--n 64] [--integrators a,b] [--write]</c>: the largest stable dt of each integrator.</item>
+/// <item><c>stability [--n 64] [--integrators a,b] [--write] [--verbose]</c>: the largest stable dt of each
+/// integrator (<c>--dt X</c>: one trial at X instead of the search).</item>
 /// <item><c>profile [--n 128] [--seconds 20]</c>: RK4 cloth steps in a loop, for <c>perf record</c>.</item>
 /// <item><c>--quick</c> (before BenchmarkDotNet's arguments): small cloths, for CI.</item>
 /// </list>
@@ -42,14 +43,29 @@ internal static class Program
             return RunProfile(args[1..]);
         }
 
-        if (args.Length > 0 && args[0] == "--quick")
+        var quick = args.Length > 0 && args[0] == "--quick";
+        if (quick)
         {
             Environment.SetEnvironmentVariable(BenchmarkSizes.QuickVariable, "1");
             args = args[1..];
         }
 
         var summaries = BenchmarkSwitcher.FromAssembly(typeof(Program).Assembly).Run(args).ToList();
-        return CheckSummaries(summaries);
+        var status = CheckSummaries(summaries);
+        if (quick)
+        {
+            // CI: a filter that silently matches nothing must not pass.
+            foreach (var type in new[] { typeof(ClothStepBenchmarks), typeof(IntegratorBenchmarks), typeof(ComparisonBenchmarks) })
+            {
+                if (!summaries.Any(s => s.BenchmarksCases.Any(c => c.Descriptor.Type == type)))
+                {
+                    Console.Error.WriteLine($"error: quick mode did not run {type.Name}");
+                    status = 1;
+                }
+            }
+        }
+
+        return status;
     }
 
     /// <summary>0 when every benchmark of every summary ran and has a result; 1 (with the reasons) otherwise.</summary>
@@ -86,6 +102,20 @@ internal static class Program
         var n = int.Parse(Option(args, "--n") ?? BenchmarkSizes.IntegratorCloth.ToString(CultureInfo.InvariantCulture), CultureInfo.InvariantCulture);
         var names = Option(args, "--integrators")?.Split(',') ?? IntegratorCatalog.Names.ToArray();
         var write = args.Contains("--write");
+        if (Option(args, "--dt") is { } single)
+        {
+            var dt = double.Parse(single, CultureInfo.InvariantCulture);
+            foreach (var name in names)
+            {
+                var trial = StabilitySearch.Run(name, n, dt);
+                Console.WriteLine(string.Create(
+                    CultureInfo.InvariantCulture,
+                    $"{name} at dt = {dt:G6} on the {n} x {n} cloth for {StabilitySearch.SimulatedSeconds} s: {trial.Reason}, farthest from a pin {trial.FarthestFromPin:G4} m"));
+            }
+
+            return 0;
+        }
+
         var verbose = args.Contains("--verbose");
         Console.WriteLine(string.Create(
             CultureInfo.InvariantCulture,
@@ -143,7 +173,7 @@ internal static class Program
             cloth.Reset();
             for (var s = 0; s < ClothFixture.StepsPerInvoke; s++)
             {
-                cloth.System.Step(rk4, ClothFixture.TimeStep);
+                cloth.System.Step(rk4, cloth.TimeStep);
             }
 
             steps += ClothFixture.StepsPerInvoke;
