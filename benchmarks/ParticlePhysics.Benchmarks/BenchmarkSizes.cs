@@ -20,6 +20,9 @@ internal static class BenchmarkSizes
     /// <summary>n for the RK4 scaling benchmark: 16 to 256 (quick: 16 and 32).</summary>
     public static IEnumerable<int> Scaling => Quick ? new[] { 16, 32 } : new[] { 16, 32, 64, 128, 256 };
 
+    /// <summary>n for the spring-loop experiments: 32 and 128 (quick: 16).</summary>
+    public static IEnumerable<int> Kernel => Quick ? new[] { 16 } : new[] { 32, 128 };
+
     /// <summary>n for the comparisons with Math.NET and the student baseline: 32 and 128 (quick: 16).</summary>
     public static IEnumerable<int> Comparison => Quick ? new[] { 16 } : new[] { 32, 128 };
 }

@@ -25,10 +25,11 @@ internal sealed class ClothFixture
     /// <remarks>
     /// With M = 1 kg spread over n^2 particles and k, c fixed per spring, a particle's spring frequency grows as
     /// sqrt(k n^2 / M) ~ n but its axial damping rate c n^2 / M grows as n^2, and on the finer cloths the damping
-    /// sets RK4's limit (the real-axis bound 2.78 / rate): about 2 ms at n = 64 (stability mode), between 0.5 and
-    /// 1 ms at n = 128 and between 0.125 and 0.25 ms at n = 256 (16 steps from rest pass 1e26 beyond that).
-    /// 1 ms (64 / n)^2 stays well inside the limit, so the measured state is finite and physical; the cost of a
-    /// step does not depend on dt (no branch does, but l = 0). The C reference uses the same rule.
+    /// sets RK4's limit (the real-axis bound 2.78 / rate). The stability mode measures the limit at 2.0 ms for
+    /// n = 64 and 0.37 ms for n = 128 (1 ms diverges within 16 steps there: the state passes 1e26); at n = 256 a
+    /// search takes too long, and 16 steps from rest diverge at 0.25 ms but not at 0.125 ms. 1 ms (64 / n)^2
+    /// (0.25 ms, 62.5 us) stays inside the limit, so the measured state is finite and physical; the cost of a step
+    /// does not depend on dt (no branch does, but l = 0). The C reference uses the same rule.
     /// </remarks>
     public static double Rk4TimeStep(int particlesPerSide) =>
         particlesPerSide <= 64

@@ -11,7 +11,7 @@ namespace ParticlePhysics.Benchmarks;
 /// <see cref="ClothFixture.StepsPerInvoke"/> RK4 steps from rest at dt = 1 ms (n = 16 and 32):
 /// the student's single-precision cloth must match the library's positions within <see cref="StudentTolerance"/>
 /// (float rounding), Math.NET's RK4 within <see cref="MathNetTolerance"/> (only the summation order differs);
-/// and a library step must allocate nothing. Also prints a checksum the C reference prints too.
+/// and a library step must allocate nothing. The spring-loop experiments must give bit-identical forces. Also prints a checksum the C reference prints too.
 /// </summary>
 internal static class Verification
 {
@@ -75,6 +75,14 @@ internal static class Verification
                 $"n = {n}: checksum (sum of the state after {ClothFixture.StepsPerInvoke} steps) = {checksum:R}"));
         }
 
+        var kernels = new SpringKernels(new ClothFixture(32));
+        kernels.Library();
+        var reference = kernels.Forces.ToArray();
+        kernels.Packed();
+        ok &= Check("n = 32: spring-loop experiment Packed vs SpringNetwork.AddForces, differing force values", Differences(reference, kernels.Forces), 0, 0);
+        kernels.Unchecked();
+        ok &= Check("n = 32: spring-loop experiment Unchecked vs SpringNetwork.AddForces, differing force values", Differences(reference, kernels.Forces), 0, 0);
+
         var allocation = new ClothFixture(32);
         var method = new RungeKutta4();
         allocation.System.Step(method, allocation.TimeStep);
@@ -89,6 +97,17 @@ internal static class Verification
 
         Console.WriteLine(ok ? "verify: all checks passed" : "verify: FAILED");
         return ok ? 0 : 1;
+    }
+
+    private static int Differences(ReadOnlySpan<double> expected, ReadOnlySpan<double> actual)
+    {
+        var count = 0;
+        for (var i = 0; i < expected.Length; i++)
+        {
+            count += BitConverter.DoubleToInt64Bits(expected[i]) == BitConverter.DoubleToInt64Bits(actual[i]) ? 0 : 1;
+        }
+
+        return count;
     }
 
     private static bool Check(string what, double value, double low, double high)
