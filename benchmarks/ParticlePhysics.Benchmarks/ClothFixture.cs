@@ -24,8 +24,8 @@ internal sealed class ClothFixture
     /// </summary>
     /// <remarks>
     /// With M = 1 kg spread over n^2 particles and k, c fixed per spring, a particle's spring frequency grows as
-    /// sqrt(k n^2 / M) ~ n but its axial damping rate c n^2 / M grows as n^2, and on the finer cloths the damping
-    /// sets RK4's limit (the real-axis bound 2.78 / rate). The stability mode measures the limit at 2.0 ms for
+    /// sqrt(k n^2 / M) ~ n but its axial damping rate c n^2 / M grows as n^2, so RK4's limit (for a damped mode, the
+    /// real-axis bound 2.78 / rate) falls faster than 1 / n. The stability mode measures the limit at 2.0 ms for
     /// n = 64 and 0.37 ms for n = 128 (1 ms diverges within 16 steps there: the state passes 1e26); at n = 256 a
     /// search takes too long, and 16 steps from rest diverge at 0.25 ms but not at 0.125 ms. 1 ms (64 / n)^2
     /// (0.25 ms, 62.5 us) stays inside the limit, so the measured state is finite and physical; the cost of a step
