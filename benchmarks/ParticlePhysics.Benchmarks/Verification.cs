@@ -83,6 +83,19 @@ internal static class Verification
         kernels.Unchecked();
         ok &= Check("n = 32: spring-loop experiment Unchecked vs SpringNetwork.AddForces, differing force values", Differences(reference, kernels.Forces), 0, 0);
 
+        var library32 = new ClothFixture(32);
+        var packed32 = new ClothFixture(32);
+        PackedSprings.Replace(packed32.System, packed32.Scenario.Stiffness, packed32.Scenario.Damping);
+        var rk4a = new RungeKutta4();
+        var rk4b = new RungeKutta4();
+        for (var s = 0; s < ClothFixture.StepsPerInvoke; s++)
+        {
+            library32.System.Step(rk4a, library32.TimeStep);
+            packed32.System.Step(rk4b, packed32.TimeStep);
+        }
+
+        ok &= Check("n = 32: RK4 cloth with packed springs vs library, differing state values", Differences(library32.System.State, packed32.System.State), 0, 0);
+
         var allocation = new ClothFixture(32);
         var method = new RungeKutta4();
         allocation.System.Step(method, allocation.TimeStep);
