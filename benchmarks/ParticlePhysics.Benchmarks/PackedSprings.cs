@@ -41,20 +41,26 @@ internal sealed class PackedSprings : IForceGenerator
                     throw new ArgumentException("The experiment handles particle-particle springs only.", nameof(system));
                 }
 
-                var springs = new Spring[network.Count];
-                for (var s = 0; s < springs.Length; s++)
-                {
-                    var (first, second) = network.GetEnds(s);
-                    springs[s] = new Spring(first, second, stiffness, network.GetRestLength(s), damping);
-                }
-
-                system.AddForce(new PackedSprings(springs));
+                system.AddForce(From(network, stiffness, damping));
             }
             else
             {
                 system.AddForce(generator);
             }
         }
+    }
+
+    /// <summary>A packed copy of the particle-particle springs of <paramref name="network"/>, all of stiffness k and damping c.</summary>
+    public static PackedSprings From(SpringNetwork network, double stiffness, double damping)
+    {
+        var springs = new Spring[network.Count];
+        for (var s = 0; s < springs.Length; s++)
+        {
+            var (first, second) = network.GetEnds(s);
+            springs[s] = new Spring(first, second, stiffness, network.GetRestLength(s), damping);
+        }
+
+        return new PackedSprings(springs);
     }
 
     public void AddForces(in ParticleState state, Span<double> forces)

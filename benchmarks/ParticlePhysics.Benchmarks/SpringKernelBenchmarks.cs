@@ -12,7 +12,7 @@ namespace ParticlePhysics.Benchmarks;
 /// (the loop that takes about three quarters of an RK4 step, by perf) by the library's
 /// <see cref="SpringNetwork.AddForces"/>, and by two rewrites of the same arithmetic kept here as experiments:
 /// <list type="bullet">
-/// <item><c>Packed</c>: safe code that netstandard2.1 allows: the springs as one array of structs
+/// <item><c>Packed</c> (<see cref="PackedSprings"/>): safe code that netstandard2.1 allows: the springs as one array of structs
 /// (ends and k, L, c together: one bounds check per spring) and positions, velocities and forces seen as spans of
 /// 3-double structs with <see cref="MemoryMarshal.Cast{TFrom, TTo}(Span{TFrom})"/> (one check per particle access
 /// instead of three), the count hoisted out of the loop.</item>

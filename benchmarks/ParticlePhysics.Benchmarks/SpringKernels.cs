@@ -1,5 +1,4 @@
 using System;
-using System.Runtime.InteropServices;
 using ParticlePhysics.Forces;
 
 namespace ParticlePhysics.Benchmarks;
@@ -20,7 +19,7 @@ internal sealed class SpringKernels
     private readonly int[] _first;
     private readonly int[] _second;
     private readonly double[] _parameters;
-    private readonly PackedSpring[] _packed;
+    private readonly PackedSprings _packed;
 
     public SpringKernels(ClothFixture cloth)
     {
@@ -41,15 +40,13 @@ internal sealed class SpringKernels
         _first = new int[count];
         _second = new int[count];
         _parameters = new double[3 * count];
-        _packed = new PackedSpring[count];
+        _packed = PackedSprings.From(_network, cloth.Scenario.Stiffness, cloth.Scenario.Damping);
         for (var s = 0; s < count; s++)
         {
             (_first[s], _second[s]) = _network.GetEnds(s);
             _parameters[3 * s] = cloth.Scenario.Stiffness;
             _parameters[(3 * s) + 1] = _network.GetRestLength(s);
             _parameters[(3 * s) + 2] = cloth.Scenario.Damping;
-            _packed[s] = new PackedSpring(
-                _first[s], _second[s], _parameters[3 * s], _parameters[(3 * s) + 1], _parameters[(3 * s) + 2]);
         }
     }
 
@@ -62,42 +59,12 @@ internal sealed class SpringKernels
         _network.AddForces(in view, _forces);
     }
 
+    /// <summary>The safe rewrite: <see cref="PackedSprings"/>, the loop suggested for the core.</summary>
     public void Packed()
     {
         Array.Clear(_forces);
-        var x = MemoryMarshal.Cast<double, Triple>(_positions.AsSpan());
-        var v = MemoryMarshal.Cast<double, Triple>(_velocities.AsSpan());
-        var f = MemoryMarshal.Cast<double, Triple>(_forces.AsSpan());
-        var springs = _packed;
-        for (var s = 0; s < springs.Length; s++)
-        {
-            ref readonly var spring = ref springs[s];
-            ref readonly var xa = ref x[spring.First];
-            ref readonly var xb = ref x[spring.Second];
-            double dx = xa.X - xb.X, dy = xa.Y - xb.Y, dz = xa.Z - xb.Z;
-            var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
-            if (lengthSquared == 0.0)
-            {
-                continue;
-            }
-
-            var length = Math.Sqrt(lengthSquared);
-            var inverse = 1.0 / length;
-            double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
-            ref readonly var va = ref v[spring.First];
-            ref readonly var vb = ref v[spring.Second];
-            var closing = ((va.X - vb.X) * ux) + ((va.Y - vb.Y) * uy) + ((va.Z - vb.Z) * uz);
-            var magnitude = (spring.Stiffness * (length - spring.RestLength)) + (spring.Damping * closing);
-            double fx = magnitude * ux, fy = magnitude * uy, fz = magnitude * uz;
-            ref var fa = ref f[spring.First];
-            fa.X -= fx;
-            fa.Y -= fy;
-            fa.Z -= fz;
-            ref var fb = ref f[spring.Second];
-            fb.X += fx;
-            fb.Y += fy;
-            fb.Z += fz;
-        }
+        var view = new ParticleState(0, _positions, _velocities, _masses, _inverseMasses);
+        _packed.AddForces(in view, _forces);
     }
 
     public unsafe void Unchecked()
@@ -144,37 +111,5 @@ internal sealed class SpringKernels
         }
 
         throw new InvalidOperationException("The cloth has no SpringNetwork.");
-    }
-
-    /// <summary>Three doubles: a particle's position, velocity or force, as a view of the flat buffers.</summary>
-    [StructLayout(LayoutKind.Sequential)]
-    private struct Triple
-    {
-        public double X;
-        public double Y;
-        public double Z;
-    }
-
-    /// <summary>A spring with its ends and parameters together: 40 bytes, one bounds check per spring.</summary>
-    private readonly struct PackedSpring
-    {
-        public PackedSpring(int first, int second, double stiffness, double restLength, double damping)
-        {
-            First = first;
-            Second = second;
-            Stiffness = stiffness;
-            RestLength = restLength;
-            Damping = damping;
-        }
-
-        public int First { get; }
-
-        public int Second { get; }
-
-        public double Stiffness { get; }
-
-        public double RestLength { get; }
-
-        public double Damping { get; }
     }
 }
