@@ -1,0 +1,24 @@
+using BenchmarkDotNet.Columns;
+using BenchmarkDotNet.Configs;
+using ParticlePhysics.Benchmarks.Columns;
+
+namespace ParticlePhysics.Benchmarks;
+
+/// <summary>The computed columns of the cloth-step benchmarks: time per particle and per spring evaluation.</summary>
+public sealed class ClothColumnsConfig : ManualConfig
+{
+    public ClothColumnsConfig()
+    {
+        // Median and Min beside the Mean: on a shared machine the Min is the figure least disturbed by other work.
+        AddColumn(StatisticColumn.Median, StatisticColumn.Min, PerWorkColumn.PerParticle, PerWorkColumn.PerSpringEvaluation);
+    }
+}
+
+/// <summary>The computed columns of the integrator benchmarks: the time step used and the cost per simulated second.</summary>
+public sealed class IntegratorColumnsConfig : ManualConfig
+{
+    public IntegratorColumnsConfig()
+    {
+        AddColumn(StatisticColumn.Median, StatisticColumn.Min, SimulatedTimeColumn.TimeStep, SimulatedTimeColumn.CostPerSimulatedSecond);
+    }
+}

@@ -1,0 +1,207 @@
+using System;
+using System.Collections.Generic;
+using System.Diagnostics;
+using System.Globalization;
+using System.IO;
+using System.Linq;
+using BenchmarkDotNet.Reports;
+using BenchmarkDotNet.Running;
+using ParticlePhysics.Benchmarks.Stability;
+using ParticlePhysics.Integrators;
+
+namespace ParticlePhysics.Benchmarks;
+
+/// <summary>
+/// The benchmark program. Without a mode it is BenchmarkDotNet's switcher (pass <c>--filter</c>, <c>--job</c>, ...);
+/// its modes:
+/// <list type="bullet">
+/// <item><c>verify</c>: checks that the student baseline, Math.NET and the library give the same cloth, and that a
+/// library step allocates nothing; exits 1 if not.</item>
+/// <item><c>stability [--n 64] [--integrators a,b] [--write] [--verbose]</c>: the largest stable dt of each
+/// integrator (<c>--dt X</c>: one trial at X instead of the search).</item>
+/// <item><c>profile [--n 128] [--seconds 20]</c>: RK4 cloth steps in a loop, for <c>perf record</c>.</item>
+/// <item><c>--quick</c> (before BenchmarkDotNet's arguments): small cloths, for CI.</item>
+/// </list>
+/// After a BenchmarkDotNet run it exits 1 if any benchmark failed or has no result (NA).
+/// </summary>
+internal static class Program
+{
+    private static int Main(string[] args)
+    {
+        if (args.Length > 0 && args[0] == "verify")
+        {
+            return Verification.Run();
+        }
+
+        if (args.Length > 0 && args[0] == "stability")
+        {
+            return RunStability(args[1..]);
+        }
+
+        if (args.Length > 0 && args[0] == "profile")
+        {
+            return RunProfile(args[1..]);
+        }
+
+        var quick = args.Length > 0 && args[0] == "--quick";
+        if (quick)
+        {
+            Environment.SetEnvironmentVariable(BenchmarkSizes.QuickVariable, "1");
+            args = args[1..];
+        }
+
+        var summaries = BenchmarkSwitcher.FromAssembly(typeof(Program).Assembly).Run(args).ToList();
+        var status = CheckSummaries(summaries);
+        if (quick)
+        {
+            // CI: a filter that silently matches nothing must not pass.
+            foreach (var type in new[] { typeof(ClothStepBenchmarks), typeof(IntegratorBenchmarks), typeof(ComparisonBenchmarks), typeof(SpringKernelBenchmarks), typeof(PackedStepBenchmarks) })
+            {
+                if (!summaries.Any(s => s.BenchmarksCases.Any(c => c.Descriptor.Type == type)))
+                {
+                    Console.Error.WriteLine($"error: quick mode did not run {type.Name}");
+                    status = 1;
+                }
+            }
+        }
+
+        return status;
+    }
+
+    /// <summary>0 when every benchmark of every summary ran and has a result; 1 (with the reasons) otherwise.</summary>
+    private static int CheckSummaries(IReadOnlyList<Summary> summaries)
+    {
+        var failures = new List<string>();
+        foreach (var summary in summaries)
+        {
+            if (summary.HasCriticalValidationErrors)
+            {
+                failures.Add($"{summary.Title}: critical validation errors");
+            }
+
+            foreach (var benchmarkCase in summary.BenchmarksCases)
+            {
+                var report = summary[benchmarkCase];
+                if (report is null || !report.Success || report.ResultStatistics is null)
+                {
+                    failures.Add($"{benchmarkCase.DisplayInfo}: no result (NA)");
+                }
+            }
+        }
+
+        foreach (var failure in failures)
+        {
+            Console.Error.WriteLine($"error: {failure}");
+        }
+
+        return failures.Count == 0 ? 0 : 1;
+    }
+
+    private static int RunStability(string[] args)
+    {
+        var n = int.Parse(Option(args, "--n") ?? BenchmarkSizes.IntegratorCloth.ToString(CultureInfo.InvariantCulture), CultureInfo.InvariantCulture);
+        var names = Option(args, "--integrators")?.Split(',') ?? IntegratorCatalog.Names.ToArray();
+        var write = args.Contains("--write");
+        if (Option(args, "--dt") is { } single)
+        {
+            var dt = double.Parse(single, CultureInfo.InvariantCulture);
+            foreach (var name in names)
+            {
+                var trial = StabilitySearch.Run(name, n, dt);
+                Console.WriteLine(string.Create(
+                    CultureInfo.InvariantCulture,
+                    $"{name} at dt = {dt:G6} on the {n} x {n} cloth for {StabilitySearch.SimulatedSeconds} s: {trial.Reason}, farthest from a pin {trial.FarthestFromPin:G4} m"));
+            }
+
+            return 0;
+        }
+
+        var verbose = args.Contains("--verbose");
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"Largest stable dt on the {n} x {n} cloth: {StabilitySearch.SimulatedSeconds} s from rest within the divergence limit and every particle within {StabilitySearch.SaneDistance} m of a pin; bisected to {StabilitySearch.RelativePrecision:P0}, searched up to {StabilitySearch.LargestTried} s."));
+        Console.WriteLine();
+        Console.WriteLine($"| integrator | largest stable dt [s] | steps per simulated s | farthest from a pin [m] | search [s] |");
+        Console.WriteLine($"| --- | ---: | ---: | ---: | ---: |");
+        var lines = new List<string> { StableTimeSteps.Header };
+        foreach (var name in names)
+        {
+            if (StableTimeSteps.IsAdaptive(name))
+            {
+                Console.WriteLine($"| {name} | adaptive (tolerance 1e-8) | - | - | - |");
+                continue;
+            }
+
+            var clock = Stopwatch.StartNew();
+            Action<double, StabilitySearch.Trial>? log = verbose
+                ? (dt, trial) => Console.Error.WriteLine(string.Create(CultureInfo.InvariantCulture, $"  {name} dt={dt:G6}: {trial.Reason}"))
+                : null;
+            var largest = StabilitySearch.LargestStableTimeStep(name, n, log);
+            var check = largest > 0 ? StabilitySearch.Run(name, n, largest) : default;
+            var capped = largest >= StabilitySearch.LargestTried ? ">= " : string.Empty;
+            Console.WriteLine(string.Create(
+                CultureInfo.InvariantCulture,
+                $"| {name} | {capped}{largest:G4} | {Math.Ceiling(1 / largest)} | {check.FarthestFromPin:F3} | {clock.Elapsed.TotalSeconds:F1} |"));
+            lines.Add(StableTimeSteps.Format(name, n, largest));
+        }
+
+        if (write)
+        {
+            var path = Path.Combine(RepositoryRoot(), "benchmarks", "ParticlePhysics.Benchmarks", StableTimeSteps.FileName);
+            var kept = File.Exists(path)
+                ? File.ReadAllLines(path).Where(l => l != StableTimeSteps.Header && !names.Any(name => l.StartsWith(
+                    string.Create(CultureInfo.InvariantCulture, $"{name},{n},"), StringComparison.Ordinal)))
+                : Enumerable.Empty<string>();
+            File.WriteAllLines(path, lines.Take(1).Concat(kept).Concat(lines.Skip(1)).Where(l => l.Length > 0));
+            Console.WriteLine();
+            Console.WriteLine($"wrote {path}; rebuild to embed it.");
+        }
+
+        return 0;
+    }
+
+    private static int RunProfile(string[] args)
+    {
+        var n = int.Parse(Option(args, "--n") ?? "128", CultureInfo.InvariantCulture);
+        var seconds = double.Parse(Option(args, "--seconds") ?? "20", CultureInfo.InvariantCulture);
+        var cloth = new ClothFixture(n);
+        var rk4 = new RungeKutta4();
+        var clock = Stopwatch.StartNew();
+        long steps = 0;
+        while (clock.Elapsed.TotalSeconds < seconds)
+        {
+            cloth.Reset();
+            for (var s = 0; s < ClothFixture.StepsPerInvoke; s++)
+            {
+                cloth.System.Step(rk4, cloth.TimeStep);
+            }
+
+            steps += ClothFixture.StepsPerInvoke;
+        }
+
+        var perStep = clock.Elapsed.TotalSeconds / steps;
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"n = {n}: {steps} RK4 steps, {perStep * 1e6:F1} us per step, {perStep * 1e9 / (4.0 * cloth.SpringCount):F2} ns per spring evaluation"));
+        return 0;
+    }
+
+    private static string? Option(string[] args, string name)
+    {
+        var i = Array.IndexOf(args, name);
+        return i >= 0 && i + 1 < args.Length ? args[i + 1] : null;
+    }
+
+    private static string RepositoryRoot()
+    {
+        for (var dir = new DirectoryInfo(Directory.GetCurrentDirectory()); dir is not null; dir = dir.Parent)
+        {
+            if (File.Exists(Path.Combine(dir.FullName, "ParticlePhysics.sln")))
+            {
+                return dir.FullName;
+            }
+        }
+
+        throw new InvalidOperationException("Run from inside the repository: ParticlePhysics.sln not found above the current directory.");
+    }
+}

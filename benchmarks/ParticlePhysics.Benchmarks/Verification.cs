@@ -1,0 +1,133 @@
+using System;
+using System.Globalization;
+using ParticlePhysics.Benchmarks.Student;
+using ParticlePhysics.Integrators;
+using MathNetVector = MathNet.Numerics.LinearAlgebra.Vector<double>;
+
+namespace ParticlePhysics.Benchmarks;
+
+/// <summary>
+/// The verify mode: the comparisons are apples to apples only if the three codes compute the same cloth. After
+/// <see cref="ClothFixture.StepsPerInvoke"/> RK4 steps from rest at dt = 1 ms (n = 16 and 32):
+/// the student's single-precision cloth must match the library's positions within <see cref="StudentTolerance"/>
+/// (float rounding), Math.NET's RK4 within <see cref="MathNetTolerance"/> (only the summation order differs);
+/// and a library step must allocate nothing. The spring-loop experiments must give bit-identical forces. Also prints a checksum the C reference prints too.
+/// </summary>
+internal static class Verification
+{
+    public const double StudentTolerance = 1e-5;
+    public const double MathNetTolerance = 1e-12;
+
+    public static int Run()
+    {
+        var ok = true;
+        foreach (var n in new[] { 16, 32 })
+        {
+            var cloth = new ClothFixture(n);
+            var rk4 = new RungeKutta4();
+            for (var s = 0; s < ClothFixture.StepsPerInvoke; s++)
+            {
+                cloth.System.Step(rk4, cloth.TimeStep);
+            }
+
+            var library = cloth.System.State.ToArray();
+            var fall = -library[(3 * cloth.ParticleCount) - 2];
+            var freeFall = 0.5 * 9.81 * Math.Pow(ClothFixture.StepsPerInvoke * cloth.TimeStep, 2);
+            ok &= Check($"n = {n}: the far corner has fallen, but no faster than free fall [m]", fall, 0.5 * freeFall, 1.001 * freeFall);
+
+            var student = new StudentCloth(n);
+            for (var s = 0; s < ClothFixture.StepsPerInvoke; s++)
+            {
+                student.StepRk4((float)cloth.TimeStep);
+            }
+
+            var studentError = 0.0;
+            for (var i = 0; i < cloth.ParticleCount; i++)
+            {
+                var p = student.Particles[i].Position;
+                studentError = Math.Max(studentError, Math.Abs(p.X - library[3 * i]));
+                studentError = Math.Max(studentError, Math.Abs(p.Y - library[(3 * i) + 1]));
+                studentError = Math.Max(studentError, Math.Abs(p.Z - library[(3 * i) + 2]));
+            }
+
+            ok &= Check($"n = {n}: student baseline vs library, max position difference [m]", studentError, 0, StudentTolerance);
+
+            var fresh = new ClothFixture(n);
+            var peer = new MathNetPeer(fresh.System);
+            var mathNet = peer.Solve(
+                MathNetVector.Build.DenseOfArray(fresh.InitialState.ToArray()), fresh.TimeStep, ClothFixture.StepsPerInvoke);
+            var mathNetError = 0.0;
+            for (var i = 0; i < library.Length; i++)
+            {
+                mathNetError = Math.Max(mathNetError, Math.Abs(mathNet[i] - library[i]));
+            }
+
+            ok &= Check($"n = {n}: Math.NET RK4 vs library, max state difference", mathNetError, 0, MathNetTolerance);
+
+            var checksum = 0.0;
+            for (var i = 0; i < library.Length; i++)
+            {
+                checksum += library[i];
+            }
+
+            Console.WriteLine(string.Create(
+                CultureInfo.InvariantCulture,
+                $"n = {n}: checksum (sum of the state after {ClothFixture.StepsPerInvoke} steps) = {checksum:R}"));
+        }
+
+        var kernels = new SpringKernels(new ClothFixture(32));
+        kernels.Library();
+        var reference = kernels.Forces.ToArray();
+        kernels.Packed();
+        ok &= Check("n = 32: spring-loop experiment Packed vs SpringNetwork.AddForces, differing force values", Differences(reference, kernels.Forces), 0, 0);
+        kernels.Unchecked();
+        ok &= Check("n = 32: spring-loop experiment Unchecked vs SpringNetwork.AddForces, differing force values", Differences(reference, kernels.Forces), 0, 0);
+
+        var library32 = new ClothFixture(32);
+        var packed32 = new ClothFixture(32);
+        PackedSprings.Replace(packed32.System, packed32.Scenario.Stiffness, packed32.Scenario.Damping);
+        var rk4a = new RungeKutta4();
+        var rk4b = new RungeKutta4();
+        for (var s = 0; s < ClothFixture.StepsPerInvoke; s++)
+        {
+            library32.System.Step(rk4a, library32.TimeStep);
+            packed32.System.Step(rk4b, packed32.TimeStep);
+        }
+
+        ok &= Check("n = 32: RK4 cloth with packed springs vs library, differing state values", Differences(library32.System.State, packed32.System.State), 0, 0);
+
+        var allocation = new ClothFixture(32);
+        var method = new RungeKutta4();
+        allocation.System.Step(method, allocation.TimeStep);
+        var before = GC.GetAllocatedBytesForCurrentThread();
+        for (var s = 0; s < 100; s++)
+        {
+            allocation.System.Step(method, allocation.TimeStep);
+        }
+
+        var bytesPerStep = (GC.GetAllocatedBytesForCurrentThread() - before) / 100.0;
+        ok &= Check("n = 32: bytes allocated per library RK4 step", bytesPerStep, 0, 0);
+
+        Console.WriteLine(ok ? "verify: all checks passed" : "verify: FAILED");
+        return ok ? 0 : 1;
+    }
+
+    private static int Differences(ReadOnlySpan<double> expected, ReadOnlySpan<double> actual)
+    {
+        var count = 0;
+        for (var i = 0; i < expected.Length; i++)
+        {
+            count += BitConverter.DoubleToInt64Bits(expected[i]) == BitConverter.DoubleToInt64Bits(actual[i]) ? 0 : 1;
+        }
+
+        return count;
+    }
+
+    private static bool Check(string what, double value, double low, double high)
+    {
+        var pass = value >= low && value <= high;
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture, $"{(pass ? "ok  " : "FAIL")} {what}: {value:G4} (allowed {low:G3} to {high:G3})"));
+        return pass;
+    }
+}
