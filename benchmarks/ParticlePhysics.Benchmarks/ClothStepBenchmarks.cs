@@ -46,13 +46,4 @@ public class ClothStepBenchmarks
 
     [Benchmark(OperationsPerInvoke = ClothFixture.StepsPerInvoke, Description = "Reset (share per step)")]
     public void Reset() => _cloth.Reset();
-
-    // ---------------------------------------------------------------------------------------------------------
-    // ISSUE 3 (implicit step, the lead's): add the implicit Euler cloth step here, e.g.
-    //   [Benchmark(OperationsPerInvoke = ClothFixture.StepsPerInvoke, Description = "Implicit Euler step")]
-    //   public void ImplicitEulerStep() { reset; StepsPerInvoke x _cloth.System.Step(implicitEuler, dt); }
-    // with dt = 1/60 s as well as 1 ms (the frame step is its point), and [ClothWork(k)] only if it evaluates
-    // every spring a fixed k times per step. Once it is in IntegratorCatalog.Names it also appears in
-    // IntegratorBenchmarks and the stability table (searched up to StabilitySearch.LargestTried = 0.02 s).
-    // ---------------------------------------------------------------------------------------------------------
 }
