@@ -49,27 +49,8 @@ public sealed class Dampers : IForceGenerator, IBoundForce, IForceJacobian
     }
 
     /// <inheritdoc />
-    public void AddForces(in ParticleState state, Span<double> forces)
-    {
-        var v = state.Velocities;
-        var first = _pairs.First;
-        var second = _pairs.Second;
-        var c = _pairs.Parameters;
-        for (var s = 0; s < _pairs.Count; s++)
-        {
-            int a = 3 * first[s], b = 3 * second[s];
-            var cs = c[s];
-            var fx = -cs * (v[a] - v[b]);
-            var fy = -cs * (v[a + 1] - v[b + 1]);
-            var fz = -cs * (v[a + 2] - v[b + 2]);
-            forces[a] += fx;
-            forces[a + 1] += fy;
-            forces[a + 2] += fz;
-            forces[b] -= fx;
-            forces[b + 1] -= fy;
-            forces[b + 2] -= fz;
-        }
-    }
+    public void AddForces(in ParticleState state, Span<double> forces) =>
+        LinearPairTerms.AddScaledDifferences(_pairs, state.Velocities, forces, 1.0);
 
     /// <inheritdoc />
     public void Linearize(
@@ -79,32 +60,10 @@ public sealed class Dampers : IForceGenerator, IBoundForce, IForceJacobian
     }
 
     /// <inheritdoc />
-    public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
-    {
-        var first = _pairs.First;
-        var second = _pairs.Second;
-        var c = _pairs.Parameters;
-        for (var s = 0; s < _pairs.Count; s++)
-        {
-            int a = 3 * first[s], b = 3 * second[s];
-            var cs = -c[s] * _velocityScale;
-            for (var k = 0; k < 3; k++)
-            {
-                var y = cs * (w[a + k] - w[b + k]);
-                result[a + k] += y;
-                result[b + k] -= y;
-            }
-        }
-    }
+    public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result) =>
+        LinearPairTerms.AddScaledDifferences(_pairs, w, result, _velocityScale);
 
     /// <inheritdoc />
-    public void AddDiagonalBlocks(Span<double> blocks)
-    {
-        for (var s = 0; s < _pairs.Count; s++)
-        {
-            var cs = -_pairs.Parameters[s] * _velocityScale;
-            JacobianBlocks.AddIsotropic(blocks, _pairs.First[s], cs);
-            JacobianBlocks.AddIsotropic(blocks, _pairs.Second[s], cs);
-        }
-    }
+    public void AddDiagonalBlocks(Span<double> blocks) =>
+        LinearPairTerms.AddDiagonalBlocks(_pairs, blocks, _velocityScale);
 }

@@ -82,23 +82,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     public void AddForces(in ParticleState state, Span<double> forces)
     {
         var x = state.Positions;
-        var first = _pairs.First;
-        var second = _pairs.Second;
-        var k = _pairs.Parameters;
-        for (var s = 0; s < _pairs.Count; s++)
-        {
-            int a = 3 * first[s], b = 3 * second[s];
-            var ks = k[s];
-            var fx = -ks * (x[a] - x[b]);
-            var fy = -ks * (x[a + 1] - x[b + 1]);
-            var fz = -ks * (x[a + 2] - x[b + 2]);
-            forces[a] += fx;
-            forces[a + 1] += fy;
-            forces[a + 2] += fz;
-            forces[b] -= fx;
-            forces[b + 1] -= fy;
-            forces[b + 2] -= fz;
-        }
+        LinearPairTerms.AddScaledDifferences(_pairs, x, forces, 1.0);
 
         var anchoredParticle = _anchored.First;
         var p = _anchored.Parameters;
@@ -141,18 +125,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     {
         _positionScale = positionScale;
         var v = state.Velocities;
-        for (var s = 0; s < _pairs.Count; s++)
-        {
-            int a = 3 * _pairs.First[s], b = 3 * _pairs.Second[s];
-            var k = _pairs.Parameters[s];
-            for (var c = 0; c < 3; c++)
-            {
-                var y = -k * (v[a + c] - v[b + c]);
-                positionJacobianTimesVelocity[a + c] += y;
-                positionJacobianTimesVelocity[b + c] -= y;
-            }
-        }
-
+        LinearPairTerms.AddScaledDifferences(_pairs, v, positionJacobianTimesVelocity, 1.0);
         for (var s = 0; s < _anchored.Count; s++)
         {
             var a = 3 * _anchored.First[s];
@@ -167,18 +140,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     /// <inheritdoc />
     public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
     {
-        for (var s = 0; s < _pairs.Count; s++)
-        {
-            int a = 3 * _pairs.First[s], b = 3 * _pairs.Second[s];
-            var k = -_pairs.Parameters[s] * _positionScale;
-            for (var c = 0; c < 3; c++)
-            {
-                var y = k * (w[a + c] - w[b + c]);
-                result[a + c] += y;
-                result[b + c] -= y;
-            }
-        }
-
+        LinearPairTerms.AddScaledDifferences(_pairs, w, result, _positionScale);
         for (var s = 0; s < _anchored.Count; s++)
         {
             var a = 3 * _anchored.First[s];
@@ -193,13 +155,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     /// <inheritdoc />
     public void AddDiagonalBlocks(Span<double> blocks)
     {
-        for (var s = 0; s < _pairs.Count; s++)
-        {
-            var k = -_pairs.Parameters[s] * _positionScale;
-            JacobianBlocks.AddIsotropic(blocks, _pairs.First[s], k);
-            JacobianBlocks.AddIsotropic(blocks, _pairs.Second[s], k);
-        }
-
+        LinearPairTerms.AddDiagonalBlocks(_pairs, blocks, _positionScale);
         for (var s = 0; s < _anchored.Count; s++)
         {
             JacobianBlocks.AddIsotropic(blocks, _anchored.First[s], -_anchored.Parameters[(4 * s) + 3] * _positionScale);

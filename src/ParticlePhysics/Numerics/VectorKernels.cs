@@ -68,28 +68,7 @@ internal static class VectorKernels
         }
     }
 
-    /// <summary>target -= a source (drag: F -= lambda v).</summary>
-    public static void SubtractScaled(Span<double> target, ReadOnlySpan<double> source, double a)
-    {
-        var n = source.Length;
-        target = target.Slice(0, n);
-        var i = 0;
-        if (Vector.IsHardwareAccelerated)
-        {
-            var tv = MemoryMarshal.Cast<double, Vector<double>>(target);
-            var sv = MemoryMarshal.Cast<double, Vector<double>>(source);
-            var av = new Vector<double>(a);
-            for (var j = 0; j < sv.Length; j++)
-            {
-                tv[j] -= av * sv[j];
-            }
-
-            i = sv.Length * Vector<double>.Count;
-        }
-
-        for (; i < n; i++)
-        {
-            target[i] -= a * source[i];
-        }
-    }
+    /// <summary>target -= a source (drag: F -= lambda v); t + (-a) s is exactly t - a s, so this is AddScaled.</summary>
+    public static void SubtractScaled(Span<double> target, ReadOnlySpan<double> source, double a) =>
+        AddScaled(target, source, -a);
 }
