@@ -22,6 +22,10 @@ internal static class Options
         };
 
     /// <summary>A number option without a fixed default (the description says what happens when it is left out).</summary>
+    /// <summary>The <c>--gravity</c> option every scenario shares: g in m/s^2, pointing down (-y), a finite number &gt;= 0.</summary>
+    public static Option<double> Gravity(double defaultValue) =>
+        Number("--gravity", "Gravity g (pointing down, -y)", "m/s^2", defaultValue, NumberRule.NonNegative);
+
     public static Option<double?> OptionalNumber(string name, string description, string unit, NumberRule rule) =>
         new(name)
         {

@@ -18,7 +18,7 @@ internal sealed class ClothDefinition : ScenarioDefinition
     private readonly Option<double> _stiffness = Options.Number("--stiffness", "Stiffness k of every spring", "N/m", _defaults.Stiffness, NumberRule.NonNegative);
     private readonly Option<double> _damping = Options.Number("--damping", "Axial damping c of every spring", "N s/m", _defaults.Damping, NumberRule.NonNegative);
     private readonly Option<double> _drag = Options.Number("--drag", "Linear drag lambda on every particle", "N s/m", _defaults.Drag, NumberRule.NonNegative);
-    private readonly Option<double> _gravity = Options.Number("--gravity", "Gravity g (pointing down, -y)", "m/s^2", _defaults.Gravity, NumberRule.NonNegative);
+    private readonly Option<double> _gravity = Options.Gravity(_defaults.Gravity);
     private readonly Option<string> _pin = Options.Choice("--pin", "Pinned particles: the two corners of row 0, all of row 0, or none", "corners", "corners", "edge", "none");
 
     public override string Name => "cloth";

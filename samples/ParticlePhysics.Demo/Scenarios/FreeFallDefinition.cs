@@ -13,7 +13,7 @@ internal sealed class FreeFallDefinition : ScenarioDefinition
     private readonly Option<double> _mass = Options.Number("--mass", "Mass m of the particle", "kg", _defaults.Mass, NumberRule.Positive);
     private readonly Option<double> _drag = Options.Number("--drag", "Linear drag lambda (force -lambda v)", "N s/m", _defaults.Drag, NumberRule.NonNegative);
     private readonly Option<double> _height = Options.Number("--height", "Starting height h", "m", _defaults.Height, NumberRule.Finite);
-    private readonly Option<double> _gravity = Options.Number("--gravity", "Gravity g (pointing down, -y)", "m/s^2", _defaults.Gravity, NumberRule.NonNegative);
+    private readonly Option<double> _gravity = Options.Gravity(_defaults.Gravity);
 
     public override string Name => "free-fall";
 

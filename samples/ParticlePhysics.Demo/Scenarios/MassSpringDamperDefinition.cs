@@ -15,7 +15,7 @@ internal sealed class MassSpringDamperDefinition : ScenarioDefinition
     private readonly Option<double> _damping = Options.Number("--damping", "Linear drag c on the mass", "N s/m", _defaults.Damping, NumberRule.NonNegative);
     private readonly Option<double> _y0 = Options.Number("--y0", "Starting height y0", "m", _defaults.Y0, NumberRule.Finite);
     private readonly Option<double> _v0 = Options.Number("--v0", "Starting vertical velocity v0", "m/s", _defaults.V0, NumberRule.Finite);
-    private readonly Option<double> _gravity = Options.Number("--gravity", "Gravity g (pointing down, -y)", "m/s^2", _defaults.Gravity, NumberRule.NonNegative);
+    private readonly Option<double> _gravity = Options.Gravity(_defaults.Gravity);
 
     public override string Name => "mass-spring-damper";
 

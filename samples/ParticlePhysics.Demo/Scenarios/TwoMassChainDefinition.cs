@@ -20,7 +20,7 @@ internal sealed class TwoMassChainDefinition : ScenarioDefinition
     private readonly Option<double> _restLength2 = Options.Number("--rest-length2", "Rest length L2 of spring 2", "m", _defaults.RestLength2, NumberRule.NonNegative);
     private readonly Option<double?> _y1 = Options.OptionalNumber("--y1", "Starting height of particle 1 [default: -L1]", "m", NumberRule.Finite);
     private readonly Option<double?> _y2 = Options.OptionalNumber("--y2", "Starting height of particle 2 [default: -L1 - L2]", "m", NumberRule.Finite);
-    private readonly Option<double> _gravity = Options.Number("--gravity", "Gravity g (pointing down, -y)", "m/s^2", _defaults.Gravity, NumberRule.NonNegative);
+    private readonly Option<double> _gravity = Options.Gravity(_defaults.Gravity);
 
     public override string Name => "two-mass-chain";
 

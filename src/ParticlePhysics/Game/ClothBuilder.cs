@@ -19,7 +19,10 @@ namespace ParticlePhysics.Game;
 public sealed class ClothBuilder
 {
     /// <summary>The largest number of particles a cloth may have: 2048 x 2048.</summary>
-    public const int MaxParticles = 2048 * 2048;
+    public const int MaxParticles = MaxSide * MaxSide;
+
+    /// <summary>The most particles along a side (rows or columns): 2048, 4 million particles in a square cloth.</summary>
+    public const int MaxSide = 2048;
 
     private readonly List<int> _pins = new();
     private int _rows = 11, _columns = 11;
@@ -227,9 +230,9 @@ public sealed class ClothBuilder
 
     private static void CheckSide(int value, string name)
     {
-        if (value < 2 || value > 2048)
+        if (value < 2 || value > MaxSide)
         {
-            throw new ArgumentOutOfRangeException(name, value, $"{name} must be 2 to 2048; got {value}.");
+            throw new ArgumentOutOfRangeException(name, value, $"{name} must be 2 to {MaxSide}; got {value}.");
         }
     }
 

@@ -18,7 +18,7 @@ public sealed class ClothScenario
     public const double DefaultDuration = 5;
 
     /// <summary>The largest number of particles per side the builder accepts (4 million particles in all).</summary>
-    public const int MaxParticlesPerSide = 2048;
+    public const int MaxParticlesPerSide = ClothBuilder.MaxSide;
 
     private double _size = 1, _resolution = 0.1, _mass = 1, _stiffness = 50, _damping = 0.05, _drag = 0.01;
     private double _gravity = Forces.Gravity.StandardAcceleration;
