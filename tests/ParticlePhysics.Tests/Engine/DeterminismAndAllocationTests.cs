@@ -6,6 +6,7 @@ using ParticlePhysics.Tests.Support;
 namespace ParticlePhysics.Tests.Engine;
 
 /// <summary>Same inputs, same bits; and no allocation per step once a system and its integrator are set up.</summary>
+[Collection(AllocationMeasurements.Name)]
 public class DeterminismAndAllocationTests
 {
     private const string GoldenRk4ClothHash = "F203D0999604A5EB09E4E9F8B4DA899D50048CA7C18D9EA30A030AD553310182";

@@ -8,6 +8,7 @@ using ParticlePhysics.Tests.Support;
 namespace ParticlePhysics.Tests.Game;
 
 /// <summary>The fixed-timestep driver: whole steps, carried remainder, capped frames, interpolation, determinism.</summary>
+[Collection(AllocationMeasurements.Name)]
 public class FixedTimestepDriverTests
 {
     // 1/64 s: a power of two, so that the frame times below add up exactly and every sequence gives 40 steps.

@@ -8,6 +8,7 @@ using ParticlePhysics.Tests.Support;
 namespace ParticlePhysics.Tests.Game;
 
 /// <summary>Snapshots: bit-exact round trips in memory and on streams, and every kind of bad stream refused.</summary>
+[Collection(AllocationMeasurements.Name)]
 public class SimulationSnapshotTests
 {
     [Fact]

@@ -3,6 +3,7 @@ using System.IO;
 using System.Runtime.InteropServices;
 using ParticlePhysics.Game;
 using ParticlePhysics.Integrators;
+using ParticlePhysics.Tests.Support;
 
 namespace ParticlePhysics.Tests.Game;
 
@@ -10,6 +11,7 @@ namespace ParticlePhysics.Tests.Game;
 /// The calls docs/unity.md makes, in the same order, with a stand-in for UnityEngine.Vector3 (three floats x, y, z):
 /// Unity is not here to compile the page itself.
 /// </summary>
+[Collection(AllocationMeasurements.Name)]
 public class UnityUsageTests
 {
     [Fact]

@@ -8,6 +8,7 @@ using Xunit.Abstractions;
 namespace ParticlePhysics.Tests.Implicit;
 
 /// <summary>Implicit Euler against the course's closed form, exact backward Euler, its order, and the 60 Hz cloth.</summary>
+[Collection(AllocationMeasurements.Name)]
 public class ImplicitEulerTests
 {
     private readonly ITestOutputHelper _output;

@@ -8,6 +8,7 @@ using ParticlePhysics.Tests.Support;
 namespace ParticlePhysics.Tests.Parallel;
 
 /// <summary>Using several cores changes nothing but the time: same bits, whatever the runner.</summary>
+[Collection(AllocationMeasurements.Name)]
 public class ParallelRunnerTests
 {
     [Theory]
