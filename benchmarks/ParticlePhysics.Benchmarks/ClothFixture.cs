@@ -63,7 +63,7 @@ internal sealed class ClothFixture
 
     public ClothScenario Scenario { get; }
 
-    public ParticleSystem System { get; }
+    public ParticleWorld System { get; }
 
     /// <summary>The initial state [positions | velocities]: the flat cloth at rest.</summary>
     public ReadOnlySpan<double> InitialState => _initial;

@@ -12,7 +12,7 @@ namespace ParticlePhysics.Benchmarks;
 /// from rest per invocation) by the library (the baseline of the Ratio column), by Math.NET Numerics' RK4 on the
 /// library's force code, and by the course student's object-per-particle code. Ratio = time / library time.
 /// The "4 x Evaluate" row is the force work every RK4 step contains (four evaluations of the library's
-/// <see cref="ParticleSystem.Evaluate"/> on the initial state): Math.NET calls that same code, so its time can never
+/// <see cref="ParticleWorld.Evaluate"/> on the initial state): Math.NET calls that same code, so its time can never
 /// fall below it, and (Math.NET - floor) / (library - floor) compares what each adds around the forces.
 /// </summary>
 [MemoryDiagnoser]

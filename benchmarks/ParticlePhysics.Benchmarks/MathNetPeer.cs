@@ -7,18 +7,18 @@ namespace ParticlePhysics.Benchmarks;
 /// <summary>
 /// The peer: Math.NET Numerics' classical RK4 (<see cref="RungeKutta.FourthOrder(MathNetVector, double, double, int, Func{double, MathNetVector, MathNetVector})"/>)
 /// on the same cloth ODE. Its right-hand side wraps the library's own force code, as a user of Math.NET would:
-/// copy the vector into an array, call <see cref="ParticleSystem.Evaluate"/>, and return the derivative as a new
+/// copy the vector into an array, call <see cref="ParticleWorld.Evaluate"/>, and return the derivative as a new
 /// vector (Math.NET's solver allocates a new vector per stage and per operation anyway, and keeps the whole
 /// trajectory). The copy reuses one array, so the wrapper adds no more than one O(6 N) copy per evaluation.
 /// </summary>
 internal sealed class MathNetPeer
 {
-    private readonly ParticleSystem _system;
+    private readonly ParticleWorld _system;
     private readonly double[] _input;
     private readonly MathNetVector _inputVector;
     private readonly Func<double, MathNetVector, MathNetVector> _derivative;
 
-    public MathNetPeer(ParticleSystem system)
+    public MathNetPeer(ParticleWorld system)
     {
         _system = system;
         _input = new double[system.Dimension];

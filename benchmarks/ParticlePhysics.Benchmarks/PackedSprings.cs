@@ -24,7 +24,7 @@ internal sealed class PackedSprings : IForceGenerator
     /// Replaces the cloth's spring network by a packed copy, keeping the generators' order (so the force sums, and the
     /// results, are bit-identical). Every spring of a <see cref="Scenarios.ClothScenario"/> has the same k and c.
     /// </summary>
-    public static void Replace(ParticleSystem system, double stiffness, double damping)
+    public static void Replace(ParticleWorld system, double stiffness, double damping)
     {
         var generators = new List<IForceGenerator>(system.Forces);
         foreach (var generator in generators)

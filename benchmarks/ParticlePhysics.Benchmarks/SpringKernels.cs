@@ -100,7 +100,7 @@ internal sealed class SpringKernels
         }
     }
 
-    private static SpringNetwork FindNetwork(ParticleSystem system)
+    private static SpringNetwork FindNetwork(ParticleWorld system)
     {
         foreach (var generator in system.Forces)
         {

@@ -149,7 +149,7 @@ static void rk4_step(Cloth *c, double h)
     for (int i = 0; i < d; i++) { next[i] += 2.0 * sixth * k[i]; stage[i] = y[i] + h * k[i]; }
     evaluate(c, stage, k);
     for (int i = 0; i < d; i++) next[i] += sixth * k[i];
-    memcpy(y, next, d * sizeof(double)); /* commit, as ParticleSystem.Step does after its finiteness check */
+    memcpy(y, next, d * sizeof(double)); /* commit, as ParticleWorld.Step does after its finiteness check */
 }
 
 static double now(void)

@@ -1,5 +1,6 @@
 using System;
 using System.Globalization;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics;
 

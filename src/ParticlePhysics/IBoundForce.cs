@@ -7,5 +7,5 @@ namespace ParticlePhysics;
 internal interface IBoundForce
 {
     /// <summary>The particle system whose particles this generator names, or null when it names none.</summary>
-    ParticleSystem? System { get; }
+    ParticleWorld? System { get; }
 }

@@ -3,7 +3,7 @@ using System;
 namespace ParticlePhysics;
 
 /// <summary>
-/// A force acting on some or all particles of a <see cref="ParticleSystem"/>. The system calls each generator
+/// A force acting on some or all particles of a <see cref="ParticleWorld"/>. The system calls each generator
 /// once per evaluation (never once per particle), and the generator adds its forces into the accumulator.
 /// Generators can be added to and removed from a system at any time without touching the particles.
 /// </summary>

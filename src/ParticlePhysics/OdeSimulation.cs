@@ -1,12 +1,12 @@
 using System;
-using ParticlePhysics.Integrators;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics;
 
 /// <summary>
 /// The time loop for a plain <see cref="IOdeSystem"/> (such as the course's scalar example dy/dt = -2 y t):
 /// it owns the state vector and its time, and commits a step only when its result is finite.
-/// A <see cref="ParticleSystem"/> owns its state itself and has its own <see cref="ParticleSystem.Step"/>.
+/// A <see cref="ParticleWorld"/> owns its state itself and has its own <see cref="ParticleWorld.Step"/>.
 /// </summary>
 public sealed class OdeSimulation
 {

@@ -60,7 +60,7 @@ public readonly ref struct ParticleState
     public ReadOnlySpan<double> InverseMasses { get; }
 
     /// <summary>
-    /// The runner that a generator with much work may split it over (<see cref="ParticleSystem.Runner"/>), or null.
+    /// The runner that a generator with much work may split it over (<see cref="ParticleWorld.Runner"/>), or null.
     /// A generator that uses it must produce bit-identical forces with and without it.
     /// </summary>
     public IParallelRunner? Runner { get; }

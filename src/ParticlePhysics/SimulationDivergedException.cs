@@ -1,5 +1,6 @@
 using System;
 using System.Globalization;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics;
 
@@ -44,7 +45,7 @@ public sealed class SimulationDivergedException : Exception
     /// <summary>The offending value: NaN, infinite, or finite but beyond the divergence limit.</summary>
     public double Value { get; }
 
-    /// <summary>The divergence limit in force (<see cref="ParticleSystem.DivergenceLimit"/>).</summary>
+    /// <summary>The divergence limit in force (<see cref="ParticleWorld.DivergenceLimit"/>).</summary>
     public double Limit { get; }
 
     private static string BuildMessage(

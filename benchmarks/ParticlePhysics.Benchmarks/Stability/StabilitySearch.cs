@@ -9,7 +9,7 @@ namespace ParticlePhysics.Benchmarks.Stability;
 /// </summary>
 /// <remarks>
 /// A trial fails when a step throws <see cref="SimulationDivergedException"/> (a value beyond
-/// <see cref="ParticleSystem.DivergenceLimit"/> or not finite) or when a particle ends up farther than
+/// <see cref="ParticleWorld.DivergenceLimit"/> or not finite) or when a particle ends up farther than
 /// <see cref="SaneDistance"/> from the nearest pin (the cloth is 1 m wide and hangs about 1.5 m: anything beyond is
 /// a blow-up that has not yet reached the limit). Explicit methods lose stability abruptly past a threshold, so
 /// "stable at dt" is monotone in practice; the search halves from <see cref="LargestTried"/> until a trial passes,
@@ -104,7 +104,7 @@ internal static class StabilitySearch
     }
 
     /// <summary>The largest distance from a particle to its nearest pinned particle, in metres.</summary>
-    public static double FarthestFromPin(ParticleSystem system)
+    public static double FarthestFromPin(ParticleWorld system)
     {
         Span<int> pins = stackalloc int[8];
         var pinCount = 0;

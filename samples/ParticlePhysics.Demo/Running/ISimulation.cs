@@ -1,5 +1,4 @@
 using System;
-using ParticlePhysics.Integrators;
 
 namespace ParticlePhysics.Demo.Running;
 

@@ -12,7 +12,7 @@ namespace ParticlePhysics.Demo.Running;
 /// </summary>
 internal class ParticleSetup : ScenarioSetup
 {
-    private readonly Func<ParticleSystem> _build;
+    private readonly Func<ParticleWorld> _build;
     private readonly int _count;
     private readonly bool _meshColumns;
     private readonly string[] _columns;
@@ -23,7 +23,7 @@ internal class ParticleSetup : ScenarioSetup
     /// <param name="count">The number of particles the system has.</param>
     /// <param name="exact">The exact solution, or null.</param>
     /// <param name="meshColumns">Adds <c>min_y</c> and <c>max_speed</c> (for the cloth).</param>
-    public ParticleSetup(string name, Func<ParticleSystem> build, int count, IExactSolution? exact, bool meshColumns = false)
+    public ParticleSetup(string name, Func<ParticleWorld> build, int count, IExactSolution? exact, bool meshColumns = false)
         : base(name, exact)
     {
         _build = build;

@@ -1,18 +1,17 @@
 using System;
-using ParticlePhysics.Integrators;
 
 namespace ParticlePhysics.Demo.Running;
 
-/// <summary>A <see cref="ParticleSystem"/> seen as an <see cref="ISimulation"/>.</summary>
+/// <summary>A <see cref="ParticleWorld"/> seen as an <see cref="ISimulation"/>.</summary>
 internal sealed class ParticleSimulation : ISimulation
 {
-    public ParticleSimulation(ParticleSystem system)
+    public ParticleSimulation(ParticleWorld system)
     {
         System = system;
     }
 
     /// <summary>The particles, for the row layout (positions, velocities, energy).</summary>
-    public ParticleSystem System { get; }
+    public ParticleWorld System { get; }
 
     public ReadOnlySpan<double> State => System.State;
 

@@ -2,6 +2,7 @@ using System;
 using System.Collections.Generic;
 using System.CommandLine;
 using System.Globalization;
+using ParticlePhysics.Cloth;
 using ParticlePhysics.Demo.Cli;
 using ParticlePhysics.Demo.Running;
 using ParticlePhysics.Scenarios;

@@ -10,11 +10,11 @@ namespace ParticlePhysics.Forces;
 public sealed class Dampers : IForceGenerator, IBoundForce, IForceJacobian
 {
     private readonly ForceElements _pairs = new(1);
-    private readonly ParticleSystem _system;
+    private readonly ParticleWorld _system;
     private double _velocityScale;
 
     /// <summary>An empty set of dampers for the particles of <paramref name="system"/>.</summary>
-    public Dampers(ParticleSystem system)
+    public Dampers(ParticleWorld system)
     {
         Guard.NotNull(system, nameof(system));
         _system = system;
@@ -23,7 +23,7 @@ public sealed class Dampers : IForceGenerator, IBoundForce, IForceJacobian
     /// <summary>The number of dampers.</summary>
     public int Count => _pairs.Count;
 
-    ParticleSystem? IBoundForce.System => _system;
+    ParticleWorld? IBoundForce.System => _system;
 
     /// <summary>Adds a damper between two different existing particles.</summary>
     /// <param name="first">One end (i).</param>

@@ -12,7 +12,7 @@ namespace ParticlePhysics.Forces;
 public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
 {
     private readonly int[]? _particles;
-    private readonly ParticleSystem? _system;
+    private readonly ParticleWorld? _system;
     private double _coefficient;
     private double _linearized;
 
@@ -28,7 +28,7 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
     /// <param name="coefficient">lambda, in N s/m: a finite number &gt;= 0.</param>
     /// <param name="system">The particle system the indices refer to.</param>
     /// <param name="particles">The particles to drag; each must exist in <paramref name="system"/>.</param>
-    public LinearDrag(double coefficient, ParticleSystem system, IEnumerable<int> particles)
+    public LinearDrag(double coefficient, ParticleWorld system, IEnumerable<int> particles)
     {
         Guard.NonNegativeFinite(coefficient, nameof(coefficient));
         Guard.NotNull(system, nameof(system));
@@ -58,7 +58,7 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
     /// <summary>The particles dragged, or null when the drag acts on every particle.</summary>
     public IReadOnlyList<int>? Particles => _particles;
 
-    ParticleSystem? IBoundForce.System => _system;
+    ParticleWorld? IBoundForce.System => _system;
 
     /// <inheritdoc />
     public void AddForces(in ParticleState state, Span<double> forces)

@@ -1,5 +1,4 @@
 using System;
-using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics.Forces;
 
@@ -24,7 +23,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     private const int AnchoredStride = 6;
     private readonly ForceElements _pairs = new(PairStride);
     private readonly ForceElements _anchored = new(AnchoredStride);
-    private readonly ParticleSystem _system;
+    private readonly ParticleWorld _system;
 
     // Linearisation, 5 values per spring: ux, uy, uz, s, t for the block s I + t u u^T.
     private const int LinearStride = 5;
@@ -36,7 +35,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     private ParallelSpringForces? _parallel;
 
     /// <summary>An empty network for the particles of <paramref name="system"/>.</summary>
-    public SpringNetwork(ParticleSystem system)
+    public SpringNetwork(ParticleWorld system)
     {
         Guard.NotNull(system, nameof(system));
         _system = system;
@@ -48,7 +47,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     /// <summary>The number of springs between a particle and a fixed anchor.</summary>
     public int AnchoredCount => _anchored.Count;
 
-    ParticleSystem? IBoundForce.System => _system;
+    ParticleWorld? IBoundForce.System => _system;
 
     /// <summary>Adds a spring between two different existing particles.</summary>
     /// <param name="first">One end (i).</param>

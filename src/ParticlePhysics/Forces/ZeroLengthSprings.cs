@@ -13,11 +13,11 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     // Pair parameters: k. Anchored parameters: ax, ay, az, k.
     private readonly ForceElements _pairs = new(1);
     private readonly ForceElements _anchored = new(4);
-    private readonly ParticleSystem _system;
+    private readonly ParticleWorld _system;
     private double _positionScale;
 
     /// <summary>An empty set of springs for the particles of <paramref name="system"/>.</summary>
-    public ZeroLengthSprings(ParticleSystem system)
+    public ZeroLengthSprings(ParticleWorld system)
     {
         Guard.NotNull(system, nameof(system));
         _system = system;
@@ -29,7 +29,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     /// <summary>The number of springs between a particle and a fixed anchor.</summary>
     public int AnchoredCount => _anchored.Count;
 
-    ParticleSystem? IBoundForce.System => _system;
+    ParticleWorld? IBoundForce.System => _system;
 
     /// <summary>Adds a spring between two different existing particles.</summary>
     /// <param name="first">One end.</param>

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Integrators;
 

@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Integrators;
 
@@ -175,7 +176,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     public void Step(IOdeSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double dt)
     {
         StepChecks.Check(system, state, next, dt);
-        if (system is ParticleSystem particles)
+        if (system is ParticleWorld particles)
         {
             StepParticles(particles, time, state, next, dt);
         }
@@ -187,11 +188,11 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         if (!LastConverged && ThrowIfNotConverged)
         {
             throw new SolverNotConvergedException(
-                time + dt, LastIterations, LastResidual, system is ParticleSystem ? _tolerance : NewtonTolerance);
+                time + dt, LastIterations, LastResidual, system is ParticleWorld ? _tolerance : NewtonTolerance);
         }
     }
 
-    private void StepParticles(ParticleSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double h)
+    private void StepParticles(ParticleWorld system, double time, ReadOnlySpan<double> state, Span<double> next, double h)
     {
         var n = system.CoordinateCount;
         var x0 = state.Slice(0, n);
@@ -316,7 +317,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     }
 
     /// <summary>The generators to linearise this step: those with a Jacobian, and the others by finite differences if asked.</summary>
-    private void CollectJacobians(ParticleSystem system, in ParticleState view, double h)
+    private void CollectJacobians(ParticleWorld system, in ParticleState view, double h)
     {
         _jacobians.Clear();
         var forces = system.Forces;

@@ -23,7 +23,7 @@ internal static class StepChecks
 
     public static ISecondOrderSystem SecondOrder(IOdeSystem system, string integrator) =>
         system as ISecondOrderSystem ?? throw new ArgumentException(
-            $"{integrator} needs a position/velocity system (ISecondOrderSystem), such as a ParticleSystem; "
+            $"{integrator} needs a position/velocity system (ISecondOrderSystem), such as a ParticleWorld; "
             + $"{system.GetType().Name} is a plain first-order ODE. Use explicit-euler, rk4 or rk45 for it.",
             nameof(system));
 

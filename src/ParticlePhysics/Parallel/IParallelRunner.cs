@@ -2,7 +2,7 @@ namespace ParticlePhysics.Parallel;
 
 /// <summary>
 /// Runs the chunks of an <see cref="IParallelWork"/> concurrently. The engine never starts threads of its own and
-/// never uses a global pool: a host that wants both cores sets <see cref="ParticleSystem.Runner"/> to an
+/// never uses a global pool: a host that wants both cores sets <see cref="ParticleWorld.Runner"/> to an
 /// implementation of this interface, either <see cref="WorkerThreadRunner"/> or an adapter to its own job system.
 /// Results are bit-identical with or without a runner, whatever the number of chunks or threads.
 /// </summary>

@@ -6,7 +6,7 @@ namespace ParticlePhysics.Parallel;
 
 /// <summary>
 /// An <see cref="IParallelRunner"/> with its own dedicated background threads (the calling thread works too).
-/// Create one per simulation thread, set it as <see cref="ParticleSystem.Runner"/>, and dispose it when done.
+/// Create one per simulation thread, set it as <see cref="ParticleWorld.Runner"/>, and dispose it when done.
 /// Chunks are claimed with an atomic counter; waking the workers costs a few microseconds per pass, so it pays for
 /// systems of thousands of particles, not for a handful.
 /// </summary>
@@ -49,7 +49,12 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
     /// <inheritdoc />
     public void Run(IParallelWork work, int chunkCount)
     {
-        Guard.NotNull(work, nameof(work));
+        // (Parallel is a leaf of the core, below the world's Guard: it checks its two arguments itself.)
+        if (work is null)
+        {
+            throw new ArgumentNullException(nameof(work));
+        }
+
         if (_disposed)
         {
             throw new ObjectDisposedException(nameof(WorkerThreadRunner));

@@ -1,6 +1,6 @@
 using System;
 using System.Globalization;
-using ParticlePhysics.Game;
+using ParticlePhysics.Cloth;
 
 namespace ParticlePhysics.Scenarios;
 
@@ -85,7 +85,7 @@ public sealed class ClothScenario
     public static int SpringCount(int n) => (2 * n * (n - 1)) + (2 * (n - 1) * (n - 1)) + (2 * n * Math.Max(0, n - 2));
 
     /// <summary>Builds the cloth: particles, one spring network, drag and gravity.</summary>
-    public ParticleSystem Build() => CreateBuilder().Build().System;
+    public ParticleWorld Build() => CreateBuilder().Build().System;
 
     /// <summary>
     /// A <see cref="ClothBuilder"/> set to this scenario's cloth, to build it with its mesh or change what the course

@@ -36,9 +36,9 @@ public sealed class FreeFallScenario : IExactSolution
     public double Gravity { get => _gravity; set { Guard.NonNegativeFinite(value, nameof(Gravity)); _gravity = value; } }
 
     /// <summary>Builds the particle system: one particle, gravity and linear drag.</summary>
-    public ParticleSystem Build()
+    public ParticleWorld Build()
     {
-        var system = new ParticleSystem(1);
+        var system = new ParticleWorld(1);
         system.AddParticle(new Vector3d(0, _height, 0), _mass);
         system.AddForce(Forces.Gravity.Down(_gravity));
         system.AddForce(new LinearDrag(_drag));

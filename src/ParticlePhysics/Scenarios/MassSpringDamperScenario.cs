@@ -51,9 +51,9 @@ public sealed class MassSpringDamperScenario : IExactSolution
     public double DampingRatio => _damping / (2 * Math.Sqrt(_stiffness * _mass));
 
     /// <summary>Builds the particle system: the particle, its anchored spring, drag and gravity.</summary>
-    public ParticleSystem Build()
+    public ParticleWorld Build()
     {
-        var system = new ParticleSystem(1);
+        var system = new ParticleWorld(1);
         var particle = system.AddParticle(new Vector3d(0, _y0, 0), new Vector3d(0, _v0, 0), _mass);
         var spring = new ZeroLengthSprings(system);
         spring.AddAnchored(particle, Vector3d.Zero, _stiffness);

@@ -69,9 +69,9 @@ public sealed class TwoMassChainScenario : IExactSolution
     public double Gravity { get => _gravity; set { Guard.NonNegativeFinite(value, nameof(Gravity)); _gravity = value; } }
 
     /// <summary>Builds the particle system: two particles, two springs, drag on each, gravity.</summary>
-    public ParticleSystem Build()
+    public ParticleWorld Build()
     {
-        var system = new ParticleSystem(2);
+        var system = new ParticleWorld(2);
         var first = system.AddParticle(new Vector3d(0, Y1, 0), _m1);
         var second = system.AddParticle(new Vector3d(0, Y2, 0), _m2);
         var springs = new SpringNetwork(system);

@@ -144,9 +144,9 @@ public class BadInputTests
         Assert.Contains("velocity-verlet", ex.Message, StringComparison.Ordinal);
     }
 
-    private static ParticleSystem TwoParticles(out SpringNetwork springs)
+    private static ParticleWorld TwoParticles(out SpringNetwork springs)
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(0, 0, 0), 1.0);
         system.AddParticle(new Vector3d(0, -1.5, 0), new Vector3d(0.1, 0, 0), 2.0);
         springs = new SpringNetwork(system);
@@ -157,7 +157,7 @@ public class BadInputTests
         return system;
     }
 
-    private static void AssertRejected(ParticleSystem system, string parameter, object? value, Action action)
+    private static void AssertRejected(ParticleWorld system, string parameter, object? value, Action action)
     {
         var before = Snapshot(system);
         var ex = Assert.ThrowsAny<ArgumentException>(action);
@@ -174,7 +174,7 @@ public class BadInputTests
         Assert.Equal(before, Snapshot(system));
     }
 
-    private static string Snapshot(ParticleSystem system)
+    private static string Snapshot(ParticleWorld system)
     {
         var pins = new double[system.Count];
         for (var i = 0; i < system.Count; i++)

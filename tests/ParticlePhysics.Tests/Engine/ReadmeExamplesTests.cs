@@ -17,7 +17,7 @@ public partial class ReadmeExamplesTests
     public void Quickstart_runs_and_the_pendulum_hangs_below_its_pin()
     {
         // snippet: quickstart
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         int pin = system.AddParticle(new Vector3d(0, 0, 0), mass: 1.0);
         int bob = system.AddParticle(new Vector3d(1, 0, 0), mass: 0.5);
         system.Pin(pin);
@@ -45,7 +45,7 @@ public partial class ReadmeExamplesTests
     [Fact]
     public void Wind_force_from_the_readme_pushes_particles_downwind()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(Vector3d.Zero, 1.0);
         system.AddForce(new Wind { AirVelocity = new Vector3d(5, 0, 0) });
         system.Step(new RungeKutta4(), 0.1);

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Cloth;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Integrators;
 using ParticlePhysics.Scenarios;
@@ -41,7 +42,7 @@ public class ImplicitEulerTests
     {
         // Zero-rest-length springs, drag, dampers and gravity are linear: f = K x + D v + g. Backward Euler then
         // solves the linear system (M - h D - h^2 K) v1 = M v0 + h (K x0 + g) exactly; compare with a dense solve.
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         var random = new Random(11);
         for (var i = 0; i < 6; i++)
         {
@@ -101,7 +102,7 @@ public class ImplicitEulerTests
                     return ErrorAt(chain.Build(), chain, integrator(), h, 2);
                 default:
                     var drive = new HarmonicDrive(2.0, 3.0);
-                    var system = new ParticleSystem();
+                    var system = new ParticleWorld();
                     system.AddParticle(new Vector3d(0.5, 0, 0), new Vector3d(-1, 0, 0), 2.0);
                     system.AddForce(drive);
                     var steps = (int)Math.Round(2.0 / h);
@@ -244,9 +245,9 @@ public class ImplicitEulerTests
         Assert.Equal(0, GC.GetAllocatedBytesForCurrentThread() - before);
     }
 
-    internal static double TotalEnergy(ParticleSystem system) => system.KineticEnergy() + system.PotentialEnergy();
+    internal static double TotalEnergy(ParticleWorld system) => system.KineticEnergy() + system.PotentialEnergy();
 
-    private static double ErrorAt(ParticleSystem system, IExactSolution exact, IIntegrator integrator, double h, double duration)
+    private static double ErrorAt(ParticleWorld system, IExactSolution exact, IIntegrator integrator, double h, double duration)
     {
         var steps = (int)Math.Round(duration / h);
         StateMetrics.Run(system, integrator, h, steps);
@@ -260,7 +261,7 @@ public class ImplicitEulerTests
     /// with x1 = x0 + h v1, solved for dv = v1 - v0. K and D are read off the forces by unit differences (exact for
     /// a linear force up to rounding). Pinned particles are held.
     /// </summary>
-    private static double[] DenseBackwardEuler(ParticleSystem system, double h)
+    private static double[] DenseBackwardEuler(ParticleWorld system, double h)
     {
         var n = system.CoordinateCount;
         var x0 = system.Positions.ToArray();

@@ -77,7 +77,7 @@ public class JacobianTests
     [Fact]
     public void A_compressed_spring_clamps_its_transverse_stiffness_so_the_matrix_stays_definite()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(0.3, 0.4, 0), 1);
         system.AddParticle(Vector3d.Zero, 1);
         var springs = new SpringNetwork(system);
@@ -98,7 +98,7 @@ public class JacobianTests
     [Fact]
     public void A_spring_of_zero_length_linearises_without_nan()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(1, 1, 1), 1);
         system.AddParticle(new Vector3d(1, 1, 1), 1);
         var springs = new SpringNetwork(system);
@@ -129,9 +129,9 @@ public class JacobianTests
     }
 
     /// <summary>A small system of four particles in general position, with the force under test.</summary>
-    private static (ParticleSystem System, IForceGenerator Generator) Build(string force, bool relativeVelocities)
+    private static (ParticleWorld System, IForceGenerator Generator) Build(string force, bool relativeVelocities)
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(0.1, 0.2, -0.3), new Vector3d(0.5, -0.2, 0.1), 0.7);
         system.AddParticle(new Vector3d(1.3, -0.1, 0.4), new Vector3d(-0.3, 0.4, 0.2), 1.1);
         system.AddParticle(new Vector3d(0.4, 1.2, 0.9), new Vector3d(0.2, 0.1, -0.6), 0.5);
@@ -210,7 +210,7 @@ public class JacobianTests
         return (system, generator);
     }
 
-    private static (double[,] X, double[,] V) FiniteDifferenceJacobians(ParticleSystem system, IForceGenerator generator)
+    private static (double[,] X, double[,] V) FiniteDifferenceJacobians(ParticleWorld system, IForceGenerator generator)
     {
         var n = system.CoordinateCount;
         var x = system.Positions.ToArray();
@@ -237,7 +237,7 @@ public class JacobianTests
         return (jx, jv);
     }
 
-    private static double[] Forces(ParticleSystem system, IForceGenerator generator, double[] x, double[] v)
+    private static double[] Forces(ParticleWorld system, IForceGenerator generator, double[] x, double[] v)
     {
         var forces = new double[x.Length];
         generator.AddForces(new ParticleState(0, x, v, system.Masses, system.InverseMasses), forces);

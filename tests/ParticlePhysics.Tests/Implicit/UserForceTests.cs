@@ -61,9 +61,9 @@ public class UserForceTests
         Assert.Throws<SimulationDivergedException>(() => StateMetrics.Run(explicitTreatment, new ImplicitEuler(), 0.05, 200));
     }
 
-    private static ParticleSystem Pair(out IForceGenerator force, bool userWritten = true, double stiffness = 30)
+    private static ParticleWorld Pair(out IForceGenerator force, bool userWritten = true, double stiffness = 30)
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(0, 0, 0), new Vector3d(0.3, 0, -0.2), 1.0);
         system.AddParticle(new Vector3d(1, 0.5, 0), new Vector3d(-0.1, 0.4, 0), 1.0);
         if (userWritten)

@@ -52,7 +52,7 @@ public class ConvergenceOrderTests
         var drive = new HarmonicDrive(amplitude: 2.0, angularFrequency: 3.0);
         double Error(double h)
         {
-            var system = new ParticleSystem();
+            var system = new ParticleWorld();
             system.AddParticle(new Vector3d(0.5, 0, 0), new Vector3d(-1, 0, 0), 2.0);
             system.AddForce(drive);
             var steps = (int)Math.Round(2.0 / h);

@@ -134,12 +134,12 @@ public class ExactSolutionAccuracyTests
         Assert.True(StateMetrics.MaxAbsError(system.State, expected) < 1e-5);
     }
 
-    private static (string Name, Func<ParticleSystem> Build, IExactSolution Exact, double Duration)[] Problems()
+    private static (string Name, Func<ParticleWorld> Build, IExactSolution Exact, double Duration)[] Problems()
     {
         var freeFall = new FreeFallScenario();
         var oscillator = new MassSpringDamperScenario { Y0 = 1 };
         var chain = new TwoMassChainScenario();
-        return new (string, Func<ParticleSystem>, IExactSolution, double)[]
+        return new (string, Func<ParticleWorld>, IExactSolution, double)[]
         {
             ("free-fall", freeFall.Build, freeFall, 10),
             ("mass-spring-damper", oscillator.Build, oscillator, 20),

@@ -76,7 +76,7 @@ public class ParallelRunnerTests
         Assert.Throws<ObjectDisposedException>(() => runner.Run(new CountingWork(), 4));
     }
 
-    private static ParticleSystem Cloth() => new ClothScenario { Resolution = 1.0 / 39 }.Build();
+    private static ParticleWorld Cloth() => new ClothScenario { Resolution = 1.0 / 39 }.Build();
 
     /// <summary>A host's scheduler, here one that runs the chunks on the thread pool in reverse order.</summary>
     private sealed class ReverseOrderRunner : IParallelRunner

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Cloth;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Integrators;
 using ParticlePhysics.Scenarios;
@@ -84,9 +85,9 @@ public class ConservationTests
         Assert.True(worst < 0.01, $"worst relative energy deviation {worst}");
     }
 
-    private static ParticleSystem Oscillator()
+    private static ParticleWorld Oscillator()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(1, 0, 0), 1.0);
         var spring = new ZeroLengthSprings(system);
         spring.AddAnchored(0, Vector3d.Zero, 1.0);
@@ -94,5 +95,5 @@ public class ConservationTests
         return system;
     }
 
-    private static double TotalEnergy(ParticleSystem system) => system.KineticEnergy() + system.PotentialEnergy();
+    private static double TotalEnergy(ParticleWorld system) => system.KineticEnergy() + system.PotentialEnergy();
 }

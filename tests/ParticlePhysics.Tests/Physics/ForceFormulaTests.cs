@@ -1,6 +1,5 @@
 using System;
 using ParticlePhysics.Forces;
-using ParticlePhysics.Tests.Support;
 
 namespace ParticlePhysics.Tests.Physics;
 
@@ -13,7 +12,7 @@ public class ForceFormulaTests
     [Fact]
     public void Gravity_is_m_g_down()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(1, 2, 3), 0.5);
         system.AddParticle(new Vector3d(0, 0, 0), 2.0);
         system.AddForce(new Gravity());
@@ -24,7 +23,7 @@ public class ForceFormulaTests
     [Fact]
     public void Linear_drag_is_minus_lambda_v_and_acts_only_on_its_particles()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(Vector3d.Zero, new Vector3d(1, -2, 3), 1);
         system.AddParticle(Vector3d.Zero, new Vector3d(4, 5, 6), 1);
         system.AddForce(new LinearDrag(0.5, system, new[] { 1 }));
@@ -36,7 +35,7 @@ public class ForceFormulaTests
     [Fact]
     public void Zero_rest_length_spring_is_minus_k_times_the_separation()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(1, 2, 3), 1);
         system.AddParticle(new Vector3d(-1, 0, 1), 1);
         var springs = new ZeroLengthSprings(system);
@@ -50,7 +49,7 @@ public class ForceFormulaTests
     [Fact]
     public void Spring_with_rest_length_and_axial_damping_follows_the_contract_formula()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(3, 0, 0), new Vector3d(1, 2, 0), 1);
         system.AddParticle(new Vector3d(0, 4, 0), new Vector3d(0, 0, 5), 1);
         var springs = new SpringNetwork(system);
@@ -72,7 +71,7 @@ public class ForceFormulaTests
     {
         double ForceOnFirstAlongX(double separation)
         {
-            var system = new ParticleSystem();
+            var system = new ParticleWorld();
             system.AddParticle(new Vector3d(separation, 0, 0), 1);
             system.AddParticle(Vector3d.Zero, 1);
             var springs = new SpringNetwork(system);
@@ -89,7 +88,7 @@ public class ForceFormulaTests
     [Fact]
     public void Axial_damping_opposes_the_rate_of_stretch()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(1, 0, 0), new Vector3d(2, 0, 0), 1);
         system.AddParticle(Vector3d.Zero, new Vector3d(0, 0, 0), 1);
         var springs = new SpringNetwork(system);
@@ -101,7 +100,7 @@ public class ForceFormulaTests
     [Fact]
     public void A_spring_of_zero_length_gives_zero_force_never_nan()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(1, 1, 1), new Vector3d(1, 0, 0), 1);
         system.AddParticle(new Vector3d(1, 1, 1), 1);
         var springs = new SpringNetwork(system);
@@ -114,7 +113,7 @@ public class ForceFormulaTests
     [Fact]
     public void Damper_is_minus_c_times_the_relative_velocity()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(Vector3d.Zero, new Vector3d(1, 2, 3), 1);
         system.AddParticle(new Vector3d(5, 0, 0), new Vector3d(3, 2, 1), 1);
         var dampers = new Dampers(system);
@@ -126,7 +125,7 @@ public class ForceFormulaTests
     [Fact]
     public void Potential_energies_are_consistent_with_their_forces()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(0.3, -0.2, 0.1), 0.7);
         system.AddParticle(new Vector3d(1.1, 0.4, -0.5), 1.3);
         system.AddParticle(new Vector3d(-0.6, 1.0, 0.2), 0.4);
@@ -188,6 +187,6 @@ public class ForceFormulaTests
         Assert.True(Math.Abs(sx) + Math.Abs(sy) + Math.Abs(sz) < 1e-13 * scale);
     }
 
-    private static double[] Forces(ParticleSystem system) =>
+    private static double[] Forces(ParticleWorld system) =>
         system.AccumulateForces(system.Time, system.Positions, system.Velocities).ToArray();
 }

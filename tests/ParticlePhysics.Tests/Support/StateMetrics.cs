@@ -34,7 +34,7 @@ internal static class StateMetrics
     }
 
     /// <summary>Steps <paramref name="system"/> with a fixed dt for <paramref name="steps"/> steps.</summary>
-    public static void Run(ParticleSystem system, IIntegrator integrator, double dt, int steps)
+    public static void Run(ParticleWorld system, IIntegrator integrator, double dt, int steps)
     {
         for (var s = 0; s < steps; s++)
         {
@@ -47,7 +47,7 @@ internal static class StateMetrics
     /// and returns the max error against the exact state.
     /// </summary>
     public static double ErrorAt(
-        Func<ParticleSystem> build, IExactSolution exact, string integrator, double dt, double duration)
+        Func<ParticleWorld> build, IExactSolution exact, string integrator, double dt, double duration)
     {
         var system = build();
         var steps = checked((int)Math.Round(duration / dt));

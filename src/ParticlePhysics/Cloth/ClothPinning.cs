@@ -1,4 +1,4 @@
-namespace ParticlePhysics.Scenarios;
+namespace ParticlePhysics.Cloth;
 
 /// <summary>Which particles of the cloth are pinned.</summary>
 public enum ClothPinning

@@ -1,7 +1,7 @@
 using System;
 using System.Collections.Generic;
 using System.Numerics;
-using ParticlePhysics.Integrators;
+using ParticlePhysics.Numerics;
 using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics;
@@ -19,7 +19,7 @@ namespace ParticlePhysics;
 /// A pinned particle has infinite mass (inverse mass 0) and zero velocity: every integrator leaves it exactly
 /// where it is. Stepping allocates nothing once the system and its integrator have been used once.
 /// </remarks>
-public sealed class ParticleSystem : ISecondOrderSystem
+public sealed class ParticleWorld : ISecondOrderSystem
 {
     private readonly List<IForceGenerator> _forceGenerators = new();
     private double[] _state = Array.Empty<double>();
@@ -35,15 +35,22 @@ public sealed class ParticleSystem : ISecondOrderSystem
 
     /// <summary>Creates an empty particle system.</summary>
     /// <param name="capacity">How many particles to make room for up front (optional).</param>
-    public ParticleSystem(int capacity = 0)
+    public ParticleWorld(int capacity = 0)
     {
-        if (capacity < 0)
+        if (capacity < 0 || capacity > MaxParticles)
         {
-            throw new ArgumentOutOfRangeException(nameof(capacity), capacity, $"capacity must be >= 0; got {capacity}.");
+            throw new ArgumentOutOfRangeException(
+                nameof(capacity), capacity, $"capacity must be 0 to {MaxParticles}; got {capacity}.");
         }
 
         Reallocate(capacity);
     }
+
+    /// <summary>
+    /// The most particles a world may hold: 2048 x 2048 = 4,194,304 (a state of 200 MB). Far beyond what a game
+    /// steps per frame, and small enough that every buffer size, 9 values per particle at most, fits an array.
+    /// </summary>
+    public const int MaxParticles = 2048 * 2048;
 
     /// <summary>The default <see cref="DivergenceLimit"/>: 1e12 (metres, metres per second).</summary>
     public const double DefaultDivergenceLimit = 1e12;
@@ -139,9 +146,14 @@ public sealed class ParticleSystem : ISecondOrderSystem
         Guard.Finite(position, nameof(position));
         Guard.Finite(velocity, nameof(velocity));
         Guard.Mass(mass, nameof(mass));
+        if (_count == MaxParticles)
+        {
+            throw new InvalidOperationException($"A world holds at most {MaxParticles} particles; this one is full.");
+        }
+
         if (_count == _capacity)
         {
-            Reallocate(Math.Max(4, 2 * _capacity));
+            Reallocate(Math.Min(MaxParticles, Math.Max(4, 2 * _capacity)));
         }
 
         var index = _count++;

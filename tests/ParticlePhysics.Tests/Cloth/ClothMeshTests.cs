@@ -1,10 +1,10 @@
 using System;
 using System.Collections.Generic;
 using System.Numerics;
-using ParticlePhysics.Game;
+using ParticlePhysics.Cloth;
 using ParticlePhysics.Integrators;
 
-namespace ParticlePhysics.Tests.Game;
+namespace ParticlePhysics.Tests.Cloth;
 
 /// <summary>The cloth's render data: index buffer and area-weighted vertex normals.</summary>
 public class ClothMeshTests

@@ -1,11 +1,12 @@
 using System;
 using System.Numerics;
+using ParticlePhysics.Cloth;
+using ParticlePhysics.Driver;
 using ParticlePhysics.Forces;
-using ParticlePhysics.Game;
 using ParticlePhysics.Integrators;
 using ParticlePhysics.Tests.Support;
 
-namespace ParticlePhysics.Tests.Game;
+namespace ParticlePhysics.Tests.Driver;
 
 /// <summary>The fixed-timestep driver: whole steps, carried remainder, capped frames, interpolation, determinism.</summary>
 [Collection(AllocationMeasurements.Name)]
@@ -203,9 +204,9 @@ public class FixedTimestepDriverTests
     internal static ParticleCloth SmallCloth() =>
         new ClothBuilder { Rows = 5, Columns = 6, Spacing = 0.1 }.Build();
 
-    private static ParticleSystem FallingParticle()
+    private static ParticleWorld FallingParticle()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(1, 10, 0), 1);
         system.AddForce(new Gravity());
         return system;

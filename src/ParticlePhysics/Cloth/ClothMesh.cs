@@ -1,7 +1,7 @@
 using System;
 using System.Numerics;
 
-namespace ParticlePhysics.Game;
+namespace ParticlePhysics.Cloth;
 
 /// <summary>
 /// The render topology of a rows x columns grid of vertices (vertex (row, col) = row * columns + col): two triangles

@@ -1,11 +1,10 @@
 using System;
 using System.Numerics;
-using ParticlePhysics.Integrators;
 
-namespace ParticlePhysics.Game;
+namespace ParticlePhysics.Driver;
 
 /// <summary>
-/// Runs a <see cref="ParticleSystem"/> at a fixed time step from a game loop whose frames take any time, after
+/// Runs a <see cref="ParticleWorld"/> at a fixed time step from a game loop whose frames take any time, after
 /// Glenn Fiedler's "Fix Your Timestep": each frame's elapsed time is added to an accumulator, whole fixed steps are
 /// taken out of it, and the remainder is carried to the next frame. Rendering blends the last two states with
 /// <see cref="InterpolationFactor"/>.
@@ -38,7 +37,7 @@ public sealed class FixedTimestepDriver
     /// </param>
     /// <param name="maxStepsPerFrame">The most fixed steps one call to <see cref="Advance"/> runs (default 8).</param>
     public FixedTimestepDriver(
-        ParticleSystem system,
+        ParticleWorld system,
         IIntegrator integrator,
         double fixedTimeStep,
         int subSteps = 1,
@@ -70,7 +69,7 @@ public sealed class FixedTimestepDriver
     }
 
     /// <summary>The system this driver advances.</summary>
-    public ParticleSystem System { get; }
+    public ParticleWorld System { get; }
 
     /// <summary>The integrator of every step.</summary>
     public IIntegrator Integrator { get; }
@@ -182,7 +181,7 @@ public sealed class FixedTimestepDriver
     /// <see cref="InterpolationFactor"/>, rounded to single precision, one vector per particle, for every particle of
     /// the system. Allocates nothing.
     /// </summary>
-    /// <param name="destination">At least <see cref="ParticleSystem.Count"/> vectors (Unity's Mesh.SetVertices layout).</param>
+    /// <param name="destination">At least <see cref="ParticleWorld.Count"/> vectors (Unity's Mesh.SetVertices layout).</param>
     public void InterpolatePositions(Span<Vector3> destination) => InterpolatePositions(0, System.Count, destination);
 
     /// <summary>

@@ -1,6 +1,6 @@
 using System;
 
-namespace ParticlePhysics.Integrators;
+namespace ParticlePhysics;
 
 /// <summary>
 /// Linearises a force generator that has no Jacobian of its own, by directional finite differences:

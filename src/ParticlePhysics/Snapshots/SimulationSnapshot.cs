@@ -3,11 +3,12 @@ using System.Buffers.Binary;
 using System.IO;
 using System.Text;
 using ParticlePhysics.Integrators;
+using ParticlePhysics.Numerics;
 
-namespace ParticlePhysics.Game;
+namespace ParticlePhysics.Snapshots;
 
 /// <summary>
-/// The whole dynamic state of a <see cref="ParticleSystem"/> (time, positions, velocities, masses, pins) and of its
+/// The whole dynamic state of a <see cref="ParticleWorld"/> (time, positions, velocities, masses, pins) and of its
 /// integrator (<see cref="IStatefulIntegrator"/>), captured and restored bit for bit: for save games, replays and
 /// rollback. It does not hold the force generators: they are the scene's configuration, which the host rebuilds (the
 /// same builder code) before restoring.
@@ -69,7 +70,7 @@ public sealed class SimulationSnapshot
     /// <summary>The simulated time, in seconds.</summary>
     public double Time { get; private set; }
 
-    /// <summary>The state vector [positions | velocities], 6 values per particle, as <see cref="ParticleSystem.State"/>.</summary>
+    /// <summary>The state vector [positions | velocities], 6 values per particle, as <see cref="ParticleWorld.State"/>.</summary>
     public ReadOnlySpan<double> State => _state;
 
     /// <summary>The masses, one per particle.</summary>
@@ -90,7 +91,7 @@ public sealed class SimulationSnapshot
     /// The integrator, or null: needed for a bit-exact continuation with an integrator that carries state
     /// (<see cref="DormandPrince45"/>); its name is recorded either way and checked on restore.
     /// </param>
-    public static SimulationSnapshot Capture(ParticleSystem system, IIntegrator? integrator = null)
+    public static SimulationSnapshot Capture(ParticleWorld system, IIntegrator? integrator = null)
     {
         var snapshot = new SimulationSnapshot();
         snapshot.CaptureFrom(system, integrator);
@@ -101,7 +102,7 @@ public sealed class SimulationSnapshot
     /// Overwrites this snapshot with the state of <paramref name="system"/> (and <paramref name="integrator"/>),
     /// reusing its arrays when the sizes match: allocates nothing when capturing the same system again.
     /// </summary>
-    public void CaptureFrom(ParticleSystem system, IIntegrator? integrator = null)
+    public void CaptureFrom(ParticleWorld system, IIntegrator? integrator = null)
     {
         Guard.NotNull(system, nameof(system));
         var n = system.Count;
@@ -144,7 +145,7 @@ public sealed class SimulationSnapshot
     /// <summary>
     /// Restores the captured state into <paramref name="system"/> (and <paramref name="integrator"/>), bit for bit.
     /// Everything is checked first; a rejected call throws and changes nothing. Allocates nothing. A
-    /// <see cref="FixedTimestepDriver"/> running the system should then be <see cref="FixedTimestepDriver.Reset"/>.
+    /// <see cref="Driver.FixedTimestepDriver"/> running the system should then be <see cref="Driver.FixedTimestepDriver.Reset"/>.
     /// </summary>
     /// <param name="system">A system with the same number of particles, and the same force generators for the same run.</param>
     /// <param name="integrator">
@@ -152,7 +153,7 @@ public sealed class SimulationSnapshot
     /// one that carries state (<see cref="IStatefulIntegrator"/>) needs a snapshot captured with it.
     /// </param>
     /// <exception cref="ArgumentException">The particle count, integrator name or integrator state does not match.</exception>
-    public void RestoreTo(ParticleSystem system, IIntegrator? integrator = null)
+    public void RestoreTo(ParticleWorld system, IIntegrator? integrator = null)
     {
         Guard.NotNull(system, nameof(system));
         if (system.Count != ParticleCount)
@@ -282,10 +283,10 @@ public sealed class SimulationSnapshot
             throw new InvalidDataException($"The snapshot's flags are 0x{flags:X4}; version {FormatVersion} defines none.");
         }
 
-        if (n < 0 || n > ClothBuilder.MaxParticles)
+        if (n < 0 || n > ParticleWorld.MaxParticles)
         {
             throw new InvalidDataException(
-                $"The snapshot's particle count {n} is impossible (0 to {ClothBuilder.MaxParticles} allowed).");
+                $"The snapshot's particle count {n} is impossible (0 to {ParticleWorld.MaxParticles} allowed).");
         }
 
         if (nameLength < 0 || nameLength > MaxIntegratorNameLength)

@@ -1,13 +1,12 @@
 using System;
 using System.Collections.Generic;
 using ParticlePhysics.Forces;
-using ParticlePhysics.Scenarios;
 
-namespace ParticlePhysics.Game;
+namespace ParticlePhysics.Cloth;
 
 /// <summary>
 /// Builds a rectangular cloth of <see cref="Rows"/> x <see cref="Columns"/> particles joined by springs: the course's
-/// square cloth (<see cref="ClothScenario"/> is built with it) and any other. Particle (row, col) has local index
+/// square cloth (<see cref="Scenarios.ClothScenario"/> is built with it) and any other. Particle (row, col) has local index
 /// row * columns + col and starts at rest at <see cref="Origin"/> + (col r, 0, row r): the cloth lies flat, facing +y.
 /// </summary>
 /// <remarks>
@@ -18,8 +17,8 @@ namespace ParticlePhysics.Game;
 /// </remarks>
 public sealed class ClothBuilder
 {
-    /// <summary>The largest number of particles a cloth may have: 2048 x 2048.</summary>
-    public const int MaxParticles = MaxSide * MaxSide;
+    /// <summary>The largest number of particles a cloth may have: 2048 x 2048, the world's own limit.</summary>
+    public const int MaxParticles = ParticleWorld.MaxParticles;
 
     /// <summary>The most particles along a side (rows or columns): 2048, 4 million particles in a square cloth.</summary>
     public const int MaxSide = 2048;
@@ -195,7 +194,7 @@ public sealed class ClothBuilder
     public ParticleCloth Build()
     {
         Validate();
-        var system = new ParticleSystem(ParticleCount);
+        var system = new ParticleWorld(ParticleCount);
         var springs = AddParticlesAndSprings(system, 0);
         var drag = new LinearDrag(_drag);
         var gravity = Forces.Gravity.Down(_gravity);
@@ -210,7 +209,7 @@ public sealed class ClothBuilder
     /// network, and linear drag on its own particles. No gravity is added: the system's own gravity, if any, acts on
     /// the cloth (add one <see cref="Forces.Gravity"/> per system).
     /// </summary>
-    public ParticleCloth AddTo(ParticleSystem system)
+    public ParticleCloth AddTo(ParticleWorld system)
     {
         Guard.NotNull(system, nameof(system));
         Validate();
@@ -248,7 +247,7 @@ public sealed class ClothBuilder
         }
     }
 
-    private SpringNetwork AddParticlesAndSprings(ParticleSystem system, int first)
+    private SpringNetwork AddParticlesAndSprings(ParticleWorld system, int first)
     {
         int rows = _rows, columns = _columns;
         var r = _spacing;

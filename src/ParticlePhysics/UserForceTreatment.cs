@@ -1,6 +1,6 @@
-namespace ParticlePhysics.Integrators;
+namespace ParticlePhysics;
 
-/// <summary>How <see cref="ImplicitEuler"/> treats a force generator that does not implement <see cref="IForceJacobian"/>.</summary>
+/// <summary>How <see cref="Integrators.ImplicitEuler"/> treats a force generator that does not implement <see cref="IForceJacobian"/>.</summary>
 public enum UserForceTreatment
 {
     /// <summary>

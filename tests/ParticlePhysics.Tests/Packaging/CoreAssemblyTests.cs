@@ -7,7 +7,7 @@ using System.Reflection.Metadata.Ecma335;
 using System.Reflection.PortableExecutable;
 using System.Runtime.Versioning;
 
-namespace ParticlePhysics.Tests.Game;
+namespace ParticlePhysics.Tests.Packaging;
 
 /// <summary>The core stays loadable by Unity: netstandard2.1 and nothing else.</summary>
 public class CoreAssemblyTests
@@ -15,7 +15,7 @@ public class CoreAssemblyTests
     [Fact]
     public void The_core_assembly_references_nothing_but_netstandard()
     {
-        var assembly = typeof(ParticleSystem).Assembly;
+        var assembly = typeof(ParticleWorld).Assembly;
         var references = assembly.GetReferencedAssemblies().Select(r => r.Name).ToArray();
         Assert.Equal(new[] { "netstandard" }, references);
         var netstandard = assembly.GetReferencedAssemblies().Single();
@@ -25,7 +25,7 @@ public class CoreAssemblyTests
     [Fact]
     public void The_core_assembly_targets_netstandard_2_1_and_its_metadata_agrees()
     {
-        var assembly = typeof(ParticleSystem).Assembly;
+        var assembly = typeof(ParticleWorld).Assembly;
         Assert.Equal(".NETStandard,Version=v2.1", assembly.GetCustomAttribute<TargetFrameworkAttribute>()?.FrameworkName);
 
         // Read the file itself too: no assembly reference, no module reference (P/Invoke) and no embedded resources.

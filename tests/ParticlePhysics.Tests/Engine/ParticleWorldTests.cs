@@ -8,7 +8,7 @@ using ParticlePhysics.Tests.Support;
 namespace ParticlePhysics.Tests.Engine;
 
 /// <summary>The particle store: layout, pinning, growth, forces added and removed, read-out for rendering.</summary>
-public class ParticleSystemTests
+public class ParticleWorldTests
 {
     [Theory]
     [MemberData(nameof(DeterminismAndAllocationTests.Integrators), MemberType = typeof(DeterminismAndAllocationTests))]
@@ -26,7 +26,7 @@ public class ParticleSystemTests
     [Fact]
     public void The_state_vector_is_positions_then_velocities_and_survives_growth()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         for (var i = 0; i < 37; i++)
         {
             system.AddParticle(new Vector3d(i, 2 * i, 3 * i), new Vector3d(-i, -2 * i, -3 * i), 1 + i);
@@ -50,7 +50,7 @@ public class ParticleSystemTests
     [Fact]
     public void Each_particle_has_its_own_mass()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(Vector3d.Zero, 1);
         system.AddParticle(Vector3d.Zero, 4);
         system.AddForce(new Gravity());
@@ -69,7 +69,7 @@ public class ParticleSystemTests
     [Fact]
     public void Forces_can_be_added_changed_and_removed_between_steps()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(Vector3d.Zero, 2);
         var gravity = new Gravity();
         system.AddForce(gravity);
@@ -91,7 +91,7 @@ public class ParticleSystemTests
     [Fact]
     public void Unpinning_frees_a_particle_with_its_own_mass()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(Vector3d.Zero, 2);
         system.AddForce(new Gravity());
         system.Pin(0);

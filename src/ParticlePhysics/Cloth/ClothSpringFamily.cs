@@ -1,4 +1,4 @@
-namespace ParticlePhysics.Game;
+namespace ParticlePhysics.Cloth;
 
 /// <summary>
 /// One family of a cloth's springs (structural, shear or bend): whether it is built, and the stiffness and axial

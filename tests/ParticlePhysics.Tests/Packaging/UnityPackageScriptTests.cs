@@ -6,7 +6,7 @@ using System.Linq;
 using System.Text.Json;
 using System.Text.RegularExpressions;
 
-namespace ParticlePhysics.Tests.Game;
+namespace ParticlePhysics.Tests.Packaging;
 
 /// <summary>tools/make-unity-package.py lays out a UPM folder with stable .meta GUIDs (needs python3 on PATH).</summary>
 public class UnityPackageScriptTests
@@ -26,7 +26,7 @@ public class UnityPackageScriptTests
     public void The_script_lays_out_a_unity_package_with_the_same_guids_every_time()
     {
         var root = RepositoryRoot();
-        var dll = typeof(ParticleSystem).Assembly.Location;
+        var dll = typeof(ParticleWorld).Assembly.Location;
         var output = Path.Combine(Path.GetTempPath(), "pp-upm-" + Guid.NewGuid().ToString("N"));
         try
         {

@@ -1,9 +1,9 @@
 using System;
 
-namespace ParticlePhysics.Integrators;
+namespace ParticlePhysics;
 
 /// <summary>
-/// An integrator that carries state from one step to the next (the adaptive <see cref="DormandPrince45"/> carries its
+/// An integrator that carries state from one step to the next (the adaptive <see cref="Integrators.DormandPrince45"/> carries its
 /// internal step size), so that a snapshot can save it and a restored run continues bit for bit as the original would.
 /// Integrators whose steps depend on nothing but their arguments need not implement it.
 /// </summary>
@@ -15,8 +15,8 @@ public interface IStatefulIntegrator : IIntegrator
 {
     /// <summary>
     /// The number of doubles that <see cref="WriteState"/> writes now. Fixed for some integrators (the adaptive step
-    /// size of <see cref="DormandPrince45"/>); for others it follows the system they last stepped (the warm start
-    /// of <see cref="ImplicitEuler"/>, 3 values per particle).
+    /// size of <see cref="Integrators.DormandPrince45"/>); for others it follows the system they last stepped (the warm start
+    /// of <see cref="Integrators.ImplicitEuler"/>, 3 values per particle).
     /// </summary>
     int StateLength { get; }
 

@@ -3,7 +3,7 @@ using System.Numerics;
 using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
 
-namespace ParticlePhysics;
+namespace ParticlePhysics.Numerics;
 
 /// <summary>Finiteness tests over numbers and buffers (netstandard2.1 has no double.IsFinite on every runtime Unity ships).</summary>
 internal static class DoubleChecks

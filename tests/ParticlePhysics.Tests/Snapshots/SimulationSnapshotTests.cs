@@ -1,11 +1,12 @@
 using System;
 using System.IO;
 using System.Text;
-using ParticlePhysics.Game;
+using ParticlePhysics.Cloth;
 using ParticlePhysics.Integrators;
+using ParticlePhysics.Snapshots;
 using ParticlePhysics.Tests.Support;
 
-namespace ParticlePhysics.Tests.Game;
+namespace ParticlePhysics.Tests.Snapshots;
 
 /// <summary>Snapshots: bit-exact round trips in memory and on streams, and every kind of bad stream refused.</summary>
 [Collection(AllocationMeasurements.Name)]
@@ -247,9 +248,9 @@ public class SimulationSnapshotTests
         Assert.True(target.IsPinned(0));
     }
 
-    private static ParticleSystem ClothSystem() => new ClothBuilder { Rows = 4, Columns = 5, Spacing = 0.1 }.Build().System;
+    private static ParticleWorld ClothSystem() => new ClothBuilder { Rows = 4, Columns = 5, Spacing = 0.1 }.Build().System;
 
-    private static byte[] Serialized(ParticleSystem system, IIntegrator? integrator)
+    private static byte[] Serialized(ParticleWorld system, IIntegrator? integrator)
     {
         var stream = new MemoryStream();
         SimulationSnapshot.Capture(system, integrator).WriteTo(stream);

@@ -1,12 +1,12 @@
 using System;
 
-namespace ParticlePhysics.Integrators;
+namespace ParticlePhysics;
 
 /// <summary>
 /// A time-stepping scheme: advances the state y of an <see cref="IOdeSystem"/> from t to t + dt.
 /// It reads <c>state</c> and writes <c>next</c> (two distinct buffers), so a caller can check the result before
 /// committing it. Integrators own their scratch buffers: they allocate on the first step of a given dimension and
-/// never again. The time loop, output and error handling live outside, in <see cref="ParticleSystem.Step"/> or
+/// never again. The time loop, output and error handling live outside, in <see cref="ParticleWorld.Step"/> or
 /// <see cref="OdeSimulation.Step"/>.
 /// </summary>
 public interface IIntegrator

@@ -1,11 +1,13 @@
 using System;
 using System.IO;
 using System.Runtime.InteropServices;
-using ParticlePhysics.Game;
+using ParticlePhysics.Cloth;
+using ParticlePhysics.Driver;
 using ParticlePhysics.Integrators;
+using ParticlePhysics.Snapshots;
 using ParticlePhysics.Tests.Support;
 
-namespace ParticlePhysics.Tests.Game;
+namespace ParticlePhysics.Tests.Packaging;
 
 /// <summary>
 /// The calls docs/unity.md makes, in the same order, with a stand-in for UnityEngine.Vector3 (three floats x, y, z):

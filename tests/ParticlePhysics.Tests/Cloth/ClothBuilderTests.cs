@@ -1,11 +1,11 @@
 using System;
 using System.Collections.Generic;
+using ParticlePhysics.Cloth;
 using ParticlePhysics.Forces;
-using ParticlePhysics.Game;
 using ParticlePhysics.Scenarios;
 using ParticlePhysics.Tests.Support;
 
-namespace ParticlePhysics.Tests.Game;
+namespace ParticlePhysics.Tests.Cloth;
 
 /// <summary>The cloth builder: grid, masses, pins, spring families, and the course's cloth built on it.</summary>
 public class ClothBuilderTests
@@ -100,7 +100,7 @@ public class ClothBuilderTests
     [Fact]
     public void A_cloth_added_to_a_shared_system_follows_its_particles_and_drags_only_itself()
     {
-        var system = new ParticleSystem();
+        var system = new ParticleWorld();
         system.AddParticle(new Vector3d(5, 5, 5), 1);
         var cloth = new ClothBuilder { Rows = 2, Columns = 2, Drag = 0.3 }.AddTo(system);
         Assert.Equal(1, cloth.FirstParticle);
@@ -140,7 +140,7 @@ public class ClothBuilderTests
         Assert.Throws<InvalidOperationException>(() => builder.Build());
     }
 
-    private static int[] Pinned(ParticleSystem system)
+    private static int[] Pinned(ParticleWorld system)
     {
         var pinned = new List<int>();
         for (var i = 0; i < system.Count; i++)

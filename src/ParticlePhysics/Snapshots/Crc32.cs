@@ -1,6 +1,6 @@
 using System;
 
-namespace ParticlePhysics.Game;
+namespace ParticlePhysics.Snapshots;
 
 /// <summary>
 /// CRC-32 (IEEE 802.3, the zip and PNG checksum: reflected polynomial 0xEDB88320, initial value and final xor

@@ -2,7 +2,7 @@ using System;
 using System.Numerics;
 using ParticlePhysics.Forces;
 
-namespace ParticlePhysics.Game;
+namespace ParticlePhysics.Cloth;
 
 /// <summary>
 /// A cloth built by <see cref="ClothBuilder"/>: where its particles are in the system, the force generators that
@@ -11,7 +11,7 @@ namespace ParticlePhysics.Game;
 public sealed class ParticleCloth
 {
     internal ParticleCloth(
-        ParticleSystem system, int rows, int columns, int firstParticle, SpringNetwork springs, LinearDrag drag, Gravity? gravity)
+        ParticleWorld system, int rows, int columns, int firstParticle, SpringNetwork springs, LinearDrag drag, Gravity? gravity)
     {
         System = system;
         Rows = rows;
@@ -24,7 +24,7 @@ public sealed class ParticleCloth
     }
 
     /// <summary>The particle system that holds the cloth.</summary>
-    public ParticleSystem System { get; }
+    public ParticleWorld System { get; }
 
     /// <summary>The number of rows of particles.</summary>
     public int Rows { get; }
@@ -64,8 +64,8 @@ public sealed class ParticleCloth
 
     /// <summary>
     /// Writes the cloth's current positions, rounded to single precision, into <paramref name="vertices"/> (at least
-    /// <see cref="ParticleCount"/> vectors). Allocates nothing. With a <see cref="FixedTimestepDriver"/>, use its
-    /// <see cref="FixedTimestepDriver.InterpolatePositions(int, int, Span{Vector3})"/> instead.
+    /// <see cref="ParticleCount"/> vectors). Allocates nothing. With a <see cref="Driver.FixedTimestepDriver"/>, use its
+    /// <see cref="Driver.FixedTimestepDriver.InterpolatePositions(int, int, Span{Vector3})"/> instead.
     /// </summary>
     public void WriteVertices(Span<Vector3> vertices)
     {
