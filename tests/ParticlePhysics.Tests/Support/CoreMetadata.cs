@@ -17,7 +17,7 @@ namespace ParticlePhysics.Tests.Support;
 /// </summary>
 internal sealed class CoreMetadata : IDisposable
 {
-    private static readonly Dictionary<ushort, OperandType> OperandTypes = typeof(OpCodes)
+    private static readonly Dictionary<ushort, OperandType> _operandTypes = typeof(OpCodes)
         .GetFields(BindingFlags.Public | BindingFlags.Static)
         .Select(f => (OpCode)f.GetValue(null)!)
         .ToDictionary(o => (ushort)o.Value, o => o.OperandType);
@@ -148,7 +148,7 @@ internal sealed class CoreMetadata : IDisposable
                 code = (ushort)(0xFE00 | il.ReadByte());
             }
 
-            switch (OperandTypes[code])
+            switch (_operandTypes[code])
             {
                 case OperandType.InlineField:
                 case OperandType.InlineMethod:
