@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics;
 
@@ -75,10 +76,11 @@ internal sealed class FiniteDifferenceJacobian : IForceJacobian
 
     private void Directional(ReadOnlySpan<double> w, double a, double b, Span<double> result)
     {
+        var wr = w.ForReading();
         var size = 0.0;
         for (var k = 0; k < w.Length; k++)
         {
-            size = Math.Max(size, Math.Max(Math.Abs(a * w[k]), Math.Abs(b * w[k])));
+            size = Math.Max(size, Math.Max(Math.Abs(a * wr[k]), Math.Abs(b * wr[k])));
         }
 
         if (size == 0.0)
@@ -89,8 +91,8 @@ internal sealed class FiniteDifferenceJacobian : IForceJacobian
         var e = RootEpsilon * _stateScale / size;
         for (var k = 0; k < w.Length; k++)
         {
-            _shiftedX[k] = _x[k] + (e * a * w[k]);
-            _shiftedV[k] = _v[k] + (e * b * w[k]);
+            _shiftedX[k] = _x[k] + (e * a * wr[k]);
+            _shiftedV[k] = _v[k] + (e * b * wr[k]);
         }
 
         Array.Clear(_shifted, 0, _shifted.Length);

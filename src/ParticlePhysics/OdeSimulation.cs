@@ -29,7 +29,7 @@ public sealed class OdeSimulation
         if (bad >= 0)
         {
             throw new ArgumentException(
-                $"initialState must be finite; component {bad} is {Guard.Format(initialState[bad])}.", nameof(initialState));
+                $"initialState must be finite; component {bad} is {Guard.Format(initialState.ForReading()[bad])}.", nameof(initialState));
         }
 
         Guard.Finite(initialTime, nameof(initialTime));

@@ -1,5 +1,6 @@
 using System;
 using ParticlePhysics.Parallel;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics;
 
@@ -66,10 +67,16 @@ public readonly ref struct ParticleState
     public IParallelRunner? Runner { get; }
 
     /// <summary>The position of particle <paramref name="index"/>.</summary>
-    public Vector3d Position(int index) =>
-        new(Positions[3 * index], Positions[(3 * index) + 1], Positions[(3 * index) + 2]);
+    public Vector3d Position(int index)
+    {
+        var x = Positions.ForReading();
+        return new(x[3 * index], x[(3 * index) + 1], x[(3 * index) + 2]);
+    }
 
     /// <summary>The velocity of particle <paramref name="index"/>.</summary>
-    public Vector3d Velocity(int index) =>
-        new(Velocities[3 * index], Velocities[(3 * index) + 1], Velocities[(3 * index) + 2]);
+    public Vector3d Velocity(int index)
+    {
+        var v = Velocities.ForReading();
+        return new(v[3 * index], v[(3 * index) + 1], v[(3 * index) + 2]);
+    }
 }

@@ -10,7 +10,8 @@ namespace ParticlePhysics;
 /// The course's state vector of N point masses: positions and velocities in one flat buffer of 6 N doubles,
 /// laid out [x0 y0 z0 x1 ... | vx0 vy0 vz0 vx1 ...], a mass per particle, a force accumulator, pinned particles,
 /// and a list of force generators that can change at any time. It is an <see cref="IOdeSystem"/>
-/// (dy/dt = [v | F / m]) and an <see cref="ISecondOrderSystem"/>, so every integrator can advance it.
+/// (dy/dt = [v | F / m]), an <see cref="ISecondOrderSystem"/> and an <see cref="ILinearizableSystem"/> (its forces'
+/// Jacobians, for implicit steps), so every integrator can advance it.
 /// </summary>
 /// <remarks>
 /// Positions first, then velocities (rather than interleaved per particle) so that integrators that treat the two
@@ -19,9 +20,14 @@ namespace ParticlePhysics;
 /// A pinned particle has infinite mass (inverse mass 0) and zero velocity: every integrator leaves it exactly
 /// where it is. Stepping allocates nothing once the system and its integrator have been used once.
 /// </remarks>
-public sealed class ParticleWorld : ISecondOrderSystem
+public sealed class ParticleWorld : ILinearizableSystem
 {
     private readonly List<IForceGenerator> _forceGenerators = new();
+
+    // The implicit stepper's linearisation (ILinearizableSystem): the generators linearised at the last Linearize,
+    // and the finite-difference wrappers of those that supply no Jacobian of their own, kept while they are added.
+    private readonly List<IForceJacobian> _linearized = new();
+    private readonly Dictionary<IForceGenerator, FiniteDifferenceJacobian> _finiteDifference = new();
     private double[] _state = Array.Empty<double>();
     private double[] _masses = Array.Empty<double>();
     private double[] _inverseMasses = Array.Empty<double>();
@@ -258,18 +264,19 @@ public sealed class ParticleWorld : ISecondOrderSystem
                 $"state must have 6 values per particle, {Dimension} in all; got {state.Length}.", nameof(state));
         }
 
+        var values = state.ForReading();
         var bad = DoubleChecks.FirstNonFinite(state);
         if (bad >= 0)
         {
             throw new ArgumentException(
-                $"state must be finite; value {bad} (particle {(bad % (3 * _count)) / 3}) is {Guard.Format(state[bad])}.",
+                $"state must be finite; value {bad} (particle {(bad % (3 * _count)) / 3}) is {Guard.Format(values[bad])}.",
                 nameof(state));
         }
 
         for (var i = 0; i < _count; i++)
         {
             var o = (3 * _count) + (3 * i);
-            if (_pinned[i] && (state[o] != 0.0 || state[o + 1] != 0.0 || state[o + 2] != 0.0))
+            if (_pinned[i] && (values[o] != 0.0 || values[o + 1] != 0.0 || values[o + 2] != 0.0))
             {
                 throw new ArgumentException(
                     $"Particle {i} is pinned, so its velocity in state must be zero.", nameof(state));
@@ -301,7 +308,17 @@ public sealed class ParticleWorld : ISecondOrderSystem
     }
 
     /// <summary>Removes a force generator; returns false when it was not in the system.</summary>
-    public bool RemoveForce(IForceGenerator generator) => _forceGenerators.Remove(generator);
+    public bool RemoveForce(IForceGenerator generator)
+    {
+        if (!_forceGenerators.Remove(generator))
+        {
+            return false;
+        }
+
+        _ = _finiteDifference.Remove(generator);
+        _linearized.Clear(); // a later product must not reach a removed generator; the next Linearize rebuilds it
+        return true;
+    }
 
     /// <summary>
     /// Advances the system by one step of <paramref name="dt"/> seconds with <paramref name="integrator"/>.
@@ -363,10 +380,11 @@ public sealed class ParticleWorld : ISecondOrderSystem
                 $"positions, velocities and accelerations must have {n} values each.");
         }
 
-        var forces = AccumulateForces(time, positions, velocities);
+        _ = AccumulateForces(time, positions, velocities);
         unsafe
         {
-            fixed (double* f = forces, w = _inverseMasses, a = accelerations)
+            // The accumulator itself, an array (pinning the read-only span AccumulateForces returns would not bind on Mono).
+            fixed (double* f = _forces, w = _inverseMasses, a = accelerations)
             {
                 for (var i = 0; i < _count; i++)
                 {
@@ -397,13 +415,73 @@ public sealed class ParticleWorld : ISecondOrderSystem
         return forces;
     }
 
+    /// <inheritdoc />
+    /// <remarks>
+    /// Linearises every generator that implements <see cref="IForceJacobian"/>, in the order they were added; the
+    /// others enter J by finite differences when <paramref name="userForces"/> asks for it, and not at all otherwise
+    /// (they then act on the step explicitly, through <see cref="AccumulateForces"/>).
+    /// </remarks>
+    void ILinearizableSystem.Linearize(
+        double time,
+        ReadOnlySpan<double> positions,
+        ReadOnlySpan<double> velocities,
+        double positionScale,
+        double velocityScale,
+        UserForceTreatment userForces,
+        Span<double> positionJacobianTimesVelocity)
+    {
+        _linearized.Clear();
+        for (var g = 0; g < _forceGenerators.Count; g++)
+        {
+            var generator = _forceGenerators[g];
+            if (generator is IForceJacobian jacobian)
+            {
+                _linearized.Add(jacobian);
+            }
+            else if (userForces == UserForceTreatment.FiniteDifference)
+            {
+                if (!_finiteDifference.TryGetValue(generator, out var wrapper))
+                {
+                    wrapper = new FiniteDifferenceJacobian(generator);
+                    _finiteDifference.Add(generator, wrapper);
+                }
+
+                _linearized.Add(wrapper);
+            }
+        }
+
+        var view = new ParticleState(time, positions, velocities, Masses, InverseMasses);
+        for (var j = 0; j < _linearized.Count; j++)
+        {
+            _linearized[j].Linearize(view, positionScale, velocityScale, positionJacobianTimesVelocity);
+        }
+    }
+
+    /// <inheritdoc />
+    void ILinearizableSystem.AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
+    {
+        for (var j = 0; j < _linearized.Count; j++)
+        {
+            _linearized[j].AddJacobianProduct(w, result);
+        }
+    }
+
+    /// <inheritdoc />
+    void ILinearizableSystem.AddDiagonalBlocks(Span<double> blocks)
+    {
+        for (var j = 0; j < _linearized.Count; j++)
+        {
+            _linearized[j].AddDiagonalBlocks(blocks);
+        }
+    }
+
     /// <summary>A view of the committed state for force generators and diagnostics.</summary>
     public ParticleState View() => new(_time, Positions, Velocities, Masses, InverseMasses);
 
     /// <summary>The total kinetic energy, sum of m v^2 / 2 over the particles, in joules.</summary>
     public double KineticEnergy()
     {
-        var v = Velocities;
+        var v = Velocities.ForReading();
         var sum = 0.0;
         for (var i = 0; i < _count; i++)
         {
@@ -433,7 +511,7 @@ public sealed class ParticleWorld : ISecondOrderSystem
     /// <summary>The total linear momentum, sum of m v over the particles (pinned particles have v = 0).</summary>
     public Vector3d TotalMomentum()
     {
-        var v = Velocities;
+        var v = Velocities.ForReading();
         double px = 0, py = 0, pz = 0;
         for (var i = 0; i < _count; i++)
         {
@@ -458,7 +536,7 @@ public sealed class ParticleWorld : ISecondOrderSystem
                 $"destination must hold at least {_count} vectors; it holds {destination.Length}.", nameof(destination));
         }
 
-        var x = Positions;
+        var x = Positions.ForReading();
         for (var i = 0; i < _count; i++)
         {
             destination[i] = new Vector3((float)x[3 * i], (float)x[(3 * i) + 1], (float)x[(3 * i) + 2]);

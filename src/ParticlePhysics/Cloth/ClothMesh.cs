@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 using System.Numerics;
 
 namespace ParticlePhysics.Cloth;
@@ -140,8 +141,9 @@ public sealed class ClothMesh
 
     private static void AddFaceNormal(ReadOnlySpan<Vector3> vertices, Span<Vector3> normals, int i0, int i1, int i2)
     {
-        var p0 = vertices[i0];
-        var face = Vector3.Cross(vertices[i1] - p0, vertices[i2] - p0);
+        var v = vertices.ForReading();
+        var p0 = v[i0];
+        var face = Vector3.Cross(v[i1] - p0, v[i2] - p0);
         normals[i0] += face;
         normals[i1] += face;
         normals[i2] += face;

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 using System.Numerics;
 using ParticlePhysics.Forces;
 
@@ -75,7 +76,7 @@ public sealed class ParticleCloth
                 $"vertices must hold at least {ParticleCount} vectors; it holds {vertices.Length}.", nameof(vertices));
         }
 
-        var x = System.Positions;
+        var x = System.Positions.ForReading();
         for (var i = 0; i < ParticleCount; i++)
         {
             var o = 3 * (FirstParticle + i);

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 using System.Numerics;
 
 namespace ParticlePhysics.Driver;
@@ -216,7 +217,7 @@ public sealed class FixedTimestepDriver
 
         var alpha = InterpolationFactor;
         var beta = 1.0 - alpha;
-        var current = System.Positions;
+        var current = System.Positions.ForReading();
         var previous = _previous;
         for (var i = 0; i < count; i++)
         {

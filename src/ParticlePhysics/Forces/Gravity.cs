@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Forces;
 
@@ -47,7 +48,7 @@ public sealed class Gravity : IForceGenerator, IPotentialEnergy, IForceJacobian
     /// <inheritdoc />
     public void AddForces(in ParticleState state, Span<double> forces)
     {
-        var masses = state.Masses;
+        var masses = state.Masses.ForReading();
         double gx = _acceleration.X, gy = _acceleration.Y, gz = _acceleration.Z;
         if (gx == 0.0 && gz == 0.0)
         {
@@ -72,8 +73,8 @@ public sealed class Gravity : IForceGenerator, IPotentialEnergy, IForceJacobian
     /// <inheritdoc />
     public double PotentialEnergy(in ParticleState state)
     {
-        var x = state.Positions;
-        var masses = state.Masses;
+        var x = state.Positions.ForReading();
+        var masses = state.Masses.ForReading();
         var sum = 0.0;
         for (var i = 0; i < masses.Length; i++)
         {

@@ -63,7 +63,7 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
     /// <inheritdoc />
     public void AddForces(in ParticleState state, Span<double> forces)
     {
-        var v = state.Velocities;
+        var v = state.Velocities.ForReading();
         var lambda = _coefficient;
         if (_particles is null)
         {
@@ -90,12 +90,13 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
     /// <inheritdoc />
     public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
     {
+        var wr = w.ForReading();
         var c = _linearized;
         if (_particles is null)
         {
             for (var k = 0; k < w.Length; k++)
             {
-                result[k] += c * w[k];
+                result[k] += c * wr[k];
             }
 
             return;
@@ -104,9 +105,9 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
         foreach (var p in _particles)
         {
             var o = 3 * p;
-            result[o] += c * w[o];
-            result[o + 1] += c * w[o + 1];
-            result[o + 2] += c * w[o + 2];
+            result[o] += c * wr[o];
+            result[o + 1] += c * wr[o + 1];
+            result[o + 2] += c * wr[o + 2];
         }
     }
 

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Forces;
 
@@ -11,6 +12,7 @@ internal static class LinearPairTerms
 {
     public static void AddScaledDifferences(ForceElements pairs, ReadOnlySpan<double> w, Span<double> result, double scale)
     {
+        var wr = w.ForReading();
         var first = pairs.First;
         var second = pairs.Second;
         var c = pairs.Parameters;
@@ -18,9 +20,9 @@ internal static class LinearPairTerms
         {
             int a = 3 * first[s], b = 3 * second[s];
             var k = -c[s] * scale;
-            var yx = k * (w[a] - w[b]);
-            var yy = k * (w[a + 1] - w[b + 1]);
-            var yz = k * (w[a + 2] - w[b + 2]);
+            var yx = k * (wr[a] - wr[b]);
+            var yy = k * (wr[a + 1] - wr[b + 1]);
+            var yz = k * (wr[a + 2] - wr[b + 2]);
             result[a] += yx;
             result[a + 1] += yy;
             result[a + 2] += yz;

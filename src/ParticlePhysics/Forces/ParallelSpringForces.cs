@@ -1,4 +1,5 @@
 using System;
+using System.Runtime.InteropServices;
 using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics.Forces;
@@ -38,7 +39,7 @@ internal sealed unsafe class ParallelSpringForces
         }
 
         var chunks = 4 * runner.MaxParallelism;
-        fixed (double* xp = x, vp = v, fp = forces, sf = _springForces, parameters = pairs.Parameters)
+        fixed (double* xp = &MemoryMarshal.GetReference(x), vp = &MemoryMarshal.GetReference(v), fp = forces, sf = _springForces, parameters = pairs.Parameters)
         fixed (int* first = pairs.First, second = pairs.Second, start = _start, incident = _incident)
         {
             _compute.Set(xp, vp, sf, parameters, first, second, pairs.Count);

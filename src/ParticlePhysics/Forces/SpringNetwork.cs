@@ -1,4 +1,6 @@
 using System;
+using System.Runtime.InteropServices;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Forces;
 
@@ -126,7 +128,8 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
 
         // The hot loop of every explicit step: pointers, because each spring gathers and scatters by index and the
         // bounds check of every access would otherwise cost as much as the arithmetic.
-        fixed (double* x = state.Positions, v = state.Velocities, f = forces, p = _pairs.Parameters)
+        fixed (double* x = &MemoryMarshal.GetReference(state.Positions), v = &MemoryMarshal.GetReference(state.Velocities))
+        fixed (double* f = forces, p = _pairs.Parameters)
         fixed (int* first = _pairs.First, second = _pairs.Second)
         {
             var count = _pairs.Count;
@@ -165,12 +168,14 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
 
     private void AddAnchoredForces(ReadOnlySpan<double> x0, ReadOnlySpan<double> v0, Span<double> forces)
     {
+        var x = x0.ForReading();
+        var v = v0.ForReading();
         var particle = _anchored.First;
         var r = _anchored.Parameters;
         for (var s = 0; s < _anchored.Count; s++)
         {
             int a = 3 * particle[s], q = AnchoredStride * s;
-            double dx = x0[a] - r[q], dy = x0[a + 1] - r[q + 1], dz = x0[a + 2] - r[q + 2];
+            double dx = x[a] - r[q], dy = x[a + 1] - r[q + 1], dz = x[a + 2] - r[q + 2];
             var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
             if (lengthSquared == 0.0)
             {
@@ -180,7 +185,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             var length = Math.Sqrt(lengthSquared);
             var inverse = 1.0 / length;
             double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
-            var closing = (v0[a] * ux) + (v0[a + 1] * uy) + (v0[a + 2] * uz);
+            var closing = (v[a] * ux) + (v[a + 1] * uy) + (v[a + 2] * uz);
             var magnitude = (r[q + 3] * (length - r[q + 4])) + (r[q + 5] * closing);
             forces[a] -= magnitude * ux;
             forces[a + 1] -= magnitude * uy;
@@ -191,7 +196,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     /// <inheritdoc />
     public double PotentialEnergy(in ParticleState state)
     {
-        var x = state.Positions;
+        var x = state.Positions.ForReading();
         var sum = 0.0;
         for (var s = 0; s < _pairs.Count; s++)
         {
@@ -248,8 +253,8 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             _anchoredLinear = new double[LinearStride * _anchored.First.Length];
         }
 
-        var x = state.Positions;
-        var v = state.Velocities;
+        var x = state.Positions.ForReading();
+        var v = state.Velocities.ForReading();
         var p = _pairs.Parameters;
         for (var s = 0; s < _pairs.Count; s++)
         {
@@ -276,10 +281,11 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     /// <inheritdoc />
     public unsafe void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
     {
+        var wr = w.ForReading();
         CheckSizes(w.Length, w.Length, result.Length);
 
         // The hot loop of every conjugate-gradient iteration: pointers for the same reason as in AddForces.
-        fixed (double* wp = w, y = result, lin = _linear)
+        fixed (double* wp = &MemoryMarshal.GetReference(w), y = result, lin = _linear)
         fixed (int* first = _pairs.First, second = _pairs.Second)
         {
             var count = _pairs.Count;
@@ -305,7 +311,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         for (var s = 0; s < _anchored.Count; s++)
         {
             int a = 3 * _anchored.First[s], q = LinearStride * s;
-            double dx = w[a], dy = w[a + 1], dz = w[a + 2];
+            double dx = wr[a], dy = wr[a + 1], dz = wr[a + 2];
             double ux = anchoredLin[q], uy = anchoredLin[q + 1], uz = anchoredLin[q + 2], iso = anchoredLin[q + 3];
             var axial = anchoredLin[q + 4] * ((ux * dx) + (uy * dy) + (uz * dz));
             result[a] += (iso * dx) + (axial * ux);
@@ -366,10 +372,11 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     private static void AddPositionTerm(
         ReadOnlySpan<double> linear, double axial, double iso, double dvx, double dvy, double dvz, Span<double> into, int a, int b)
     {
-        var along = axial * ((linear[0] * dvx) + (linear[1] * dvy) + (linear[2] * dvz));
-        double yx = -((iso * dvx) + (along * linear[0]));
-        double yy = -((iso * dvy) + (along * linear[1]));
-        double yz = -((iso * dvz) + (along * linear[2]));
+        var u = linear.ForReading();
+        var along = axial * ((u[0] * dvx) + (u[1] * dvy) + (u[2] * dvz));
+        double yx = -((iso * dvx) + (along * u[0]));
+        double yy = -((iso * dvy) + (along * u[1]));
+        double yz = -((iso * dvz) + (along * u[2]));
         into[a] += yx;
         into[a + 1] += yy;
         into[a + 2] += yz;

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Forces;
 
@@ -81,7 +82,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     /// <inheritdoc />
     public void AddForces(in ParticleState state, Span<double> forces)
     {
-        var x = state.Positions;
+        var x = state.Positions.ForReading();
         LinearPairTerms.AddScaledDifferences(_pairs, x, forces, 1.0);
 
         var anchoredParticle = _anchored.First;
@@ -99,7 +100,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     /// <inheritdoc />
     public double PotentialEnergy(in ParticleState state)
     {
-        var x = state.Positions;
+        var x = state.Positions.ForReading();
         var sum = 0.0;
         for (var s = 0; s < _pairs.Count; s++)
         {
@@ -124,7 +125,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
         in ParticleState state, double positionScale, double velocityScale, Span<double> positionJacobianTimesVelocity)
     {
         _positionScale = positionScale;
-        var v = state.Velocities;
+        var v = state.Velocities.ForReading();
         LinearPairTerms.AddScaledDifferences(_pairs, v, positionJacobianTimesVelocity, 1.0);
         for (var s = 0; s < _anchored.Count; s++)
         {
@@ -140,6 +141,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     /// <inheritdoc />
     public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
     {
+        var wr = w.ForReading();
         LinearPairTerms.AddScaledDifferences(_pairs, w, result, _positionScale);
         for (var s = 0; s < _anchored.Count; s++)
         {
@@ -147,7 +149,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
             var k = -_anchored.Parameters[(4 * s) + 3] * _positionScale;
             for (var c = 0; c < 3; c++)
             {
-                result[a + c] += k * w[a + c];
+                result[a + c] += k * wr[a + c];
             }
         }
     }

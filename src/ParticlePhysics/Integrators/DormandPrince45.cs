@@ -167,7 +167,7 @@ public sealed class DormandPrince45 : IStatefulIntegrator
                 $"source must hold exactly {StateLength} value; it holds {source.Length}.", nameof(source));
         }
 
-        CurrentStepSize = source[0];
+        CurrentStepSize = source.ForReading()[0];
     }
 
     private static double Ulp(double x) => Math.Max(double.Epsilon, x * 2.220446049250313e-16);

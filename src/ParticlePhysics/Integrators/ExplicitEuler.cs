@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Integrators;
 
@@ -25,12 +26,13 @@ public sealed class ExplicitEuler : IIntegrator
     /// <inheritdoc />
     public void Step(IOdeSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double dt)
     {
+        var y = state.ForReading();
         StepChecks.Check(system, state, next, dt);
         var slope = _slope = StepChecks.Sized(_slope, state.Length);
         system.Evaluate(time, state, slope);
         for (var i = 0; i < state.Length; i++)
         {
-            next[i] = state[i] + (dt * slope[i]);
+            next[i] = y[i] + (dt * slope[i]);
         }
     }
 }

@@ -1,5 +1,4 @@
 using System;
-using System.Collections.Generic;
 using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Integrators;
@@ -18,17 +17,16 @@ namespace ParticlePhysics.Integrators;
 /// block-Jacobi preconditioner, pinned particles filtered out (their dv is 0). For forces that are linear in x and v
 /// (zero-rest-length springs, drag, dampers, gravity) the linearisation is exact and so is the step (up to the
 /// solver's tolerance). For free fall with drag it is the course's v(i+1) = (v(i) - g h) / (1 + h / tau).
-/// For a plain <see cref="IOdeSystem"/>, y1 = y0 + h f(t + h, y1) is solved by Newton's method with a
+/// The stepper sees the forces only through <see cref="ILinearizableSystem"/> (the particle world implements it).
+/// For any other <see cref="IOdeSystem"/>, y1 = y0 + h f(t + h, y1) is solved by Newton's method with a
 /// finite-difference Jacobian and a dense LU factorisation (fine for small systems such as the course's scalar ODE).
 /// Order 1. Stability: the whole left half-plane (A-stable), so any h is stable on a damped linear system.
 /// </remarks>
 public sealed class ImplicitEuler : IStatefulIntegrator
 {
-    private readonly Dictionary<IForceGenerator, FiniteDifferenceJacobian> _finiteDifference = new();
     /// <summary>Newton's method on a plain ODE stops when its update is this small relative to 1 + |y|.</summary>
     private const double NewtonTolerance = 1e-12;
 
-    private readonly List<IForceJacobian> _jacobians = new();
     private double _tolerance = 1e-6;
     private int _maxIterations = 200;
     // Warm start: the last two steps' dv, and how many of them are known (0, 1 or 2).
@@ -144,7 +142,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     /// <inheritdoc />
     public void ReadState(ReadOnlySpan<double> source)
     {
-        var known = source.Length > 0 ? source[0] : -1;
+        var values = source.ForReading();
+        var known = source.Length > 0 ? values[0] : -1;
         var valid = known is 0.0 or 1.0 or 2.0
             && (known == 0.0 ? source.Length == 1 : (source.Length - 1) % (3 * (int)known) == 0 && source.Length > 1)
             && DoubleChecks.FirstNonFinite(source) < 0;
@@ -153,7 +152,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
             throw new ArgumentException(
                 "An implicit-euler state is [k], k = 0, 1 or 2 steps known, followed by k vectors of 3 finite values "
                 + $"per particle; got {source.Length} values starting with "
-                + $"{(source.Length > 0 ? Guard.Format(source[0]) : "nothing")}.",
+                + $"{(source.Length > 0 ? Guard.Format(values[0]) : "nothing")}.",
                 nameof(source));
         }
 
@@ -176,9 +175,9 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     public void Step(IOdeSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double dt)
     {
         StepChecks.Check(system, state, next, dt);
-        if (system is ParticleWorld particles)
+        if (system is ILinearizableSystem linearizable)
         {
-            StepParticles(particles, time, state, next, dt);
+            StepLinearized(linearizable, time, state, next, dt);
         }
         else
         {
@@ -188,15 +187,16 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         if (!LastConverged && ThrowIfNotConverged)
         {
             throw new SolverNotConvergedException(
-                time + dt, LastIterations, LastResidual, system is ParticleWorld ? _tolerance : NewtonTolerance);
+                time + dt, LastIterations, LastResidual, system is ILinearizableSystem ? _tolerance : NewtonTolerance);
         }
     }
 
-    private void StepParticles(ParticleWorld system, double time, ReadOnlySpan<double> state, Span<double> next, double h)
+    private void StepLinearized(ILinearizableSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double h)
     {
         var n = system.CoordinateCount;
-        var x0 = state.Slice(0, n);
-        var v0 = state.Slice(n, n);
+        var y0 = state.ForReading();
+        var x0 = y0.Slice(0, n);
+        var v0 = y0.Slice(n, n);
         var f0 = _force = StepChecks.Sized(_force, n);
         var b = _rhs = StepChecks.Sized(_rhs, n);
         var dv = _dv = StepChecks.Sized(_dv, n);
@@ -206,21 +206,16 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         var z = _preconditioned = StepChecks.Sized(_preconditioned, n);
         var jw = _jacobianProduct = StepChecks.Sized(_jacobianProduct, n);
         var blocks = _blocks = StepChecks.Sized(_blocks, 3 * n);
-        var masses = system.Masses;
-        var inverseMasses = system.InverseMasses;
+        var masses = system.Masses.ForReading();
+        var inverseMasses = system.InverseMasses.ForReading();
         var end = time + h;
 
         // f0, and the linearisation: K v0 accumulates into jw, the diagonal blocks of h D + h^2 K into blocks.
         system.AccumulateForces(end, x0, v0).CopyTo(f0);
-        var view = new ParticleState(end, x0, v0, masses, inverseMasses);
-        CollectJacobians(system, view, h);
         Array.Clear(jw, 0, n);
         Array.Clear(blocks, 0, blocks.Length);
-        foreach (var jacobian in _jacobians)
-        {
-            jacobian.Linearize(view, h * h, h, jw);
-            jacobian.AddDiagonalBlocks(blocks);
-        }
+        system.Linearize(end, x0, v0, h * h, h, UserForces, jw);
+        system.AddDiagonalBlocks(blocks);
 
         // b = h (f0 + h K v0), filtered; preconditioner P = inverse of the blocks of M - (h D + h^2 K).
         for (var k = 0; k < n; k++)
@@ -250,7 +245,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
                 dv[k] = inverseMasses[k / 3] == 0.0 ? 0.0 : guess;
             }
 
-            _ = ApplySystemMatrix(dv, q, jw, masses, inverseMasses);
+            _ = ApplySystemMatrix(system, dv, q, jw, masses, inverseMasses);
             for (var k = 0; k < n; k++)
             {
                 r[k] = b[k] - q[k];
@@ -269,7 +264,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         var target = _tolerance * rhsNorm;
         while (residualNorm > target && iterations < _maxIterations)
         {
-            var pq = ApplySystemMatrix(p, q, jw, masses, inverseMasses);
+            var pq = ApplySystemMatrix(system, p, q, jw, masses, inverseMasses);
             if (!(pq > 0.0))
             {
                 break; // not positive definite along p (or NaN): keep the best solution so far
@@ -316,40 +311,12 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         }
     }
 
-    /// <summary>The generators to linearise this step: those with a Jacobian, and the others by finite differences if asked.</summary>
-    private void CollectJacobians(ParticleWorld system, in ParticleState view, double h)
-    {
-        _jacobians.Clear();
-        var forces = system.Forces;
-        for (var g = 0; g < forces.Count; g++)
-        {
-            var generator = forces[g];
-            if (generator is IForceJacobian jacobian)
-            {
-                _jacobians.Add(jacobian);
-            }
-            else if (UserForces == UserForceTreatment.FiniteDifference)
-            {
-                if (!_finiteDifference.TryGetValue(generator, out var wrapper))
-                {
-                    wrapper = new FiniteDifferenceJacobian(generator);
-                    _finiteDifference.Add(generator, wrapper);
-                }
-
-                _jacobians.Add(wrapper);
-            }
-        }
-    }
-
     /// <summary>q = (M - J) p on the free particles, 0 on the pinned ones; returns p . q.</summary>
-    private double ApplySystemMatrix(
-        double[] p, double[] q, double[] jw, ReadOnlySpan<double> masses, ReadOnlySpan<double> inverseMasses)
+    private static double ApplySystemMatrix(
+        ILinearizableSystem system, double[] p, double[] q, double[] jw, Span<double> masses, Span<double> inverseMasses)
     {
         Array.Clear(jw, 0, p.Length);
-        foreach (var jacobian in _jacobians)
-        {
-            jacobian.AddJacobianProduct(p, jw);
-        }
+        system.AddJacobianProduct(p, jw);
 
         var pq = 0.0;
         for (var i = 0; i < masses.Length; i++)
@@ -373,7 +340,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     }
 
     /// <summary>Turns each 3 x 3 block J_ii into (M_i - J_ii)^-1 in place; pinned particles get the zero block (filtered).</summary>
-    private static void InvertBlocks(double[] blocks, ReadOnlySpan<double> masses, ReadOnlySpan<double> inverseMasses)
+    private static void InvertBlocks(double[] blocks, Span<double> masses, Span<double> inverseMasses)
     {
         for (var i = 0; i < masses.Length; i++)
         {
@@ -450,6 +417,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     private void StepNewton(IOdeSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double h)
     {
         var n = state.Length;
+        var y0 = state.ForReading();
         var y = _newtonY = StepChecks.Sized(_newtonY, n);
         var f = _newtonF = StepChecks.Sized(_newtonF, n);
         var shifted = _newtonFShifted = StepChecks.Sized(_newtonFShifted, n);
@@ -480,7 +448,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
 
             for (var i = 0; i < n; i++)
             {
-                delta[i] = -(y[i] - state[i] - (h * f[i]));
+                delta[i] = -(y[i] - y0[i] - (h * f[i]));
             }
 
             if (!LuSolve(matrix, pivots, delta, n))

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Integrators;
 
@@ -30,8 +31,9 @@ public sealed class SemiImplicitEuler : IIntegrator
         var mechanical = StepChecks.SecondOrder(system, Name);
         var n = mechanical.CoordinateCount;
         var a = _acceleration = StepChecks.Sized(_acceleration, n);
-        var x = state.Slice(0, n);
-        var v = state.Slice(n, n);
+        var y = state.ForReading();
+        var x = y.Slice(0, n);
+        var v = y.Slice(n, n);
         mechanical.ComputeAccelerations(time, x, v, a);
         for (var i = 0; i < n; i++)
         {

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Integrators;
 
@@ -36,8 +37,9 @@ public sealed class VelocityVerlet : IIntegrator
         var a0 = _a0 = StepChecks.Sized(_a0, n);
         var a1 = _a1 = StepChecks.Sized(_a1, n);
         var predicted = _predicted = StepChecks.Sized(_predicted, n);
-        var x = state.Slice(0, n);
-        var v = state.Slice(n, n);
+        var y = state.ForReading();
+        var x = y.Slice(0, n);
+        var v = y.Slice(n, n);
         var x1 = next.Slice(0, n);
         var v1 = next.Slice(n, n);
 

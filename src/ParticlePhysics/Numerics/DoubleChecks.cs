@@ -15,9 +15,10 @@ internal static class DoubleChecks
     /// <summary>The index of the first entry that is NaN or infinite, or -1 when all are finite.</summary>
     public static int FirstNonFinite(ReadOnlySpan<double> values)
     {
+        var v = values.ForReading();
         for (var i = 0; i < values.Length; i++)
         {
-            if ((values[i] - values[i]) != 0.0)
+            if ((v[i] - v[i]) != 0.0)
             {
                 return i;
             }
@@ -32,11 +33,12 @@ internal static class DoubleChecks
     /// </summary>
     public static int FirstBeyond(ReadOnlySpan<double> values, double limit)
     {
+        var v = values.ForReading();
         var start = 0;
         if (Vector.IsHardwareAccelerated)
         {
             // Whole vectors first: |v| <= limit is false for NaN, so one comparison per lane catches everything.
-            var vectors = MemoryMarshal.Cast<double, Vector<double>>(values);
+            var vectors = MemoryMarshal.Cast<double, Vector<double>>(v);
             var bound = new Vector<double>(limit);
             for (var j = 0; j < vectors.Length; j++)
             {
@@ -52,7 +54,7 @@ internal static class DoubleChecks
 
         for (var i = start; i < values.Length; i++)
         {
-            if (!(Math.Abs(values[i]) <= limit))
+            if (!(Math.Abs(v[i]) <= limit))
             {
                 return i;
             }

@@ -66,13 +66,14 @@ internal static class MatrixExponential
 
     public static void Apply(double[,] matrix, ReadOnlySpan<double> vector, Span<double> result)
     {
+        var x = vector.ForReading();
         var n = vector.Length;
         for (var i = 0; i < n; i++)
         {
             var sum = 0.0;
             for (var j = 0; j < n; j++)
             {
-                sum += matrix[i, j] * vector[j];
+                sum += matrix[i, j] * x[j];
             }
 
             result[i] = sum;

@@ -17,14 +17,15 @@ internal static class VectorKernels
         var n = y.Length;
         next = next.Slice(0, n);
         stage = stage.Slice(0, n);
-        k = k.Slice(0, n);
+        var yr = y.ForReading();
+        var kr = k.Slice(0, n).ForReading();
         var i = 0;
         if (Vector.IsHardwareAccelerated)
         {
             var nv = MemoryMarshal.Cast<double, Vector<double>>(next);
             var sv = MemoryMarshal.Cast<double, Vector<double>>(stage);
-            var yv = MemoryMarshal.Cast<double, Vector<double>>(y);
-            var kv = MemoryMarshal.Cast<double, Vector<double>>(k);
+            var yv = MemoryMarshal.Cast<double, Vector<double>>(yr);
+            var kv = MemoryMarshal.Cast<double, Vector<double>>(kr);
             var av = new Vector<double>(a);
             var bv = new Vector<double>(b);
             for (var j = 0; j < yv.Length; j++)
@@ -38,8 +39,8 @@ internal static class VectorKernels
 
         for (; i < n; i++)
         {
-            next[i] = (first ? y[i] : next[i]) + (a * k[i]);
-            stage[i] = y[i] + (b * k[i]);
+            next[i] = (first ? yr[i] : next[i]) + (a * kr[i]);
+            stage[i] = yr[i] + (b * kr[i]);
         }
     }
 
@@ -48,11 +49,12 @@ internal static class VectorKernels
     {
         var n = source.Length;
         target = target.Slice(0, n);
+        var s = source.ForReading();
         var i = 0;
         if (Vector.IsHardwareAccelerated)
         {
             var tv = MemoryMarshal.Cast<double, Vector<double>>(target);
-            var sv = MemoryMarshal.Cast<double, Vector<double>>(source);
+            var sv = MemoryMarshal.Cast<double, Vector<double>>(s);
             var av = new Vector<double>(a);
             for (var j = 0; j < sv.Length; j++)
             {
@@ -64,7 +66,7 @@ internal static class VectorKernels
 
         for (; i < n; i++)
         {
-            target[i] += a * source[i];
+            target[i] += a * s[i];
         }
     }
 

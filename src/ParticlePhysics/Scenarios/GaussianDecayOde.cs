@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Scenarios;
 
@@ -22,7 +23,7 @@ public sealed class GaussianDecayOde : IOdeSystem, IExactSolution
 
     /// <inheritdoc />
     public void Evaluate(double time, ReadOnlySpan<double> state, Span<double> derivative) =>
-        derivative[0] = -2.0 * state[0] * time;
+        derivative[0] = -2.0 * state.ForReading()[0] * time;
 
     /// <inheritdoc />
     public void ExactState(double time, Span<double> state) => state[0] = Math.Exp(-time * time);

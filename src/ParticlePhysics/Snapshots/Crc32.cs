@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Snapshots;
 
@@ -15,9 +16,10 @@ internal static class Crc32
     public static uint Compute(ReadOnlySpan<byte> data)
     {
         var crc = 0xFFFFFFFFu;
-        foreach (var b in data)
+        var bytes = data.ForReading();
+        for (var i = 0; i < bytes.Length; i++)
         {
-            crc = _table[(crc ^ b) & 0xFF] ^ (crc >> 8);
+            crc = _table[(crc ^ bytes[i]) & 0xFF] ^ (crc >> 8);
         }
 
         return crc ^ 0xFFFFFFFFu;

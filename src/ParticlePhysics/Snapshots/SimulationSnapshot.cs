@@ -358,7 +358,7 @@ public sealed class SimulationSnapshot
         o = ReadDoubles(span, o, snapshot._masses);
         for (var i = 0; i < n; i++)
         {
-            var flag = span[o++];
+            var flag = span.ForReading()[o++];
             if (flag > 1)
             {
                 throw new InvalidDataException($"Particle {i}'s pinned flag is {flag}; it must be 0 or 1.");
@@ -440,9 +440,10 @@ public sealed class SimulationSnapshot
     private static string Hex(ReadOnlySpan<byte> bytes)
     {
         var text = new StringBuilder(2 * bytes.Length);
-        foreach (var b in bytes)
+        var readable = bytes.ForReading();
+        for (var i = 0; i < readable.Length; i++)
         {
-            text.Append(b.ToString("X2", System.Globalization.CultureInfo.InvariantCulture));
+            text.Append(readable[i].ToString("X2", System.Globalization.CultureInfo.InvariantCulture));
         }
 
         return text.ToString();

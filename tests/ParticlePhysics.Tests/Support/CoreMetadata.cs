@@ -97,7 +97,7 @@ internal sealed class CoreMetadata : IDisposable
     /// Every member of another assembly that the core references, with the type it returns (a field's type) and its
     /// whole signature, as text.
     /// </summary>
-    public IEnumerable<(string Member, string Returns, string Signature)> ExternalMemberReferences()
+    public IEnumerable<(MemberReferenceHandle Handle, string Member, string Returns, string Signature)> ExternalMemberReferences()
     {
         var formatter = new SignatureFormatter();
         foreach (var handle in Reader.MemberReferences)
@@ -118,18 +118,35 @@ internal sealed class CoreMetadata : IDisposable
             if (member.GetKind() == MemberReferenceKind.Method)
             {
                 var method = member.DecodeMethodSignature(formatter, null);
-                yield return (name, method.ReturnType, FormatMethod(method));
+                yield return (handle, name, method.ReturnType, FormatMethod(method));
             }
             else
             {
                 var field = member.DecodeFieldSignature(formatter, null);
-                yield return (name, field, field);
+                yield return (handle, name, field, field);
             }
         }
     }
 
     private static string FormatMethod(MethodSignature<string> signature) =>
         signature.ReturnType + " (" + string.Join(", ", signature.ParameterTypes) + ")";
+
+    /// <summary>The methods of the core (as Type.Method) whose bodies use the member reference <paramref name="member"/>.</summary>
+    public IEnumerable<string> MethodsUsing(MemberReferenceHandle member)
+    {
+        foreach (var typeHandle in Reader.TypeDefinitions)
+        {
+            foreach (var methodHandle in Reader.GetTypeDefinition(typeHandle).GetMethods())
+            {
+                var method = Reader.GetMethodDefinition(methodHandle);
+                if (method.RelativeVirtualAddress != 0
+                    && Tokens(_pe.GetMethodBody(method.RelativeVirtualAddress)).Contains(member))
+                {
+                    yield return NameOf(typeHandle) + "." + Reader.GetString(method.Name);
+                }
+            }
+        }
+    }
 
     private void AddBody(MethodBodyBlock body, TypeCollector used)
     {
@@ -139,6 +156,16 @@ internal sealed class CoreMetadata : IDisposable
             _ = locals.DecodeLocalSignature(used, null);
         }
 
+        foreach (var token in Tokens(body))
+        {
+            used.AddEntity(token);
+        }
+    }
+
+    /// <summary>The metadata tokens (fields, methods, types, signatures) that a method body's IL names, in order.</summary>
+    private static List<EntityHandle> Tokens(MethodBodyBlock body)
+    {
+        var tokens = new List<EntityHandle>();
         var il = body.GetILReader();
         while (il.RemainingBytes > 0)
         {
@@ -155,7 +182,7 @@ internal sealed class CoreMetadata : IDisposable
                 case OperandType.InlineType:
                 case OperandType.InlineTok:
                 case OperandType.InlineSig:
-                    used.AddEntity(MetadataTokens.EntityHandle(il.ReadInt32()));
+                    tokens.Add(MetadataTokens.EntityHandle(il.ReadInt32()));
                     break;
                 case OperandType.InlineSwitch:
                     var cases = il.ReadInt32();
@@ -185,6 +212,8 @@ internal sealed class CoreMetadata : IDisposable
                     throw new InvalidOperationException($"Unknown operand type of IL opcode 0x{code:X}.");
             }
         }
+
+        return tokens;
     }
 
     /// <summary>Collects the type definitions named by signatures and tokens (a signature provider used for its side effect).</summary>

@@ -1,0 +1,51 @@
+using System;
+
+namespace ParticlePhysics;
+
+/// <summary>
+/// What an implicit stepper needs of a mechanical system beyond its accelerations: the masses, the forces at a state,
+/// and their linearisation there, J = a df/dx + b df/dv, as matrix-free products and 3 x 3 diagonal blocks.
+/// <see cref="ParticleWorld"/> implements it over its force generators, so that the stepper never sees forces.
+/// </summary>
+/// <remarks>
+/// The stepper calls <see cref="Linearize"/> once per step, then any number of <see cref="AddJacobianProduct"/> and
+/// <see cref="AddDiagonalBlocks"/> calls, which all use the J stored by that call. J must be symmetric and negative
+/// semi-definite, so that M - J is symmetric positive definite (see <see cref="IForceJacobian"/>).
+/// </remarks>
+public interface ILinearizableSystem : ISecondOrderSystem
+{
+    /// <summary>The masses, one per particle (<see cref="ISecondOrderSystem.CoordinateCount"/> / 3 values).</summary>
+    ReadOnlySpan<double> Masses { get; }
+
+    /// <summary>The inverse masses, one per particle: 0 for an immovable (pinned) particle, whose velocity change is 0.</summary>
+    ReadOnlySpan<double> InverseMasses { get; }
+
+    /// <summary>The forces at (<paramref name="time"/>, x, v), 3 values per particle, valid until the next evaluation.</summary>
+    ReadOnlySpan<double> AccumulateForces(double time, ReadOnlySpan<double> positions, ReadOnlySpan<double> velocities);
+
+    /// <summary>
+    /// Stores J = <paramref name="positionScale"/> df/dx + <paramref name="velocityScale"/> df/dv at (x, v) for the
+    /// products that follow, and adds (df/dx) v into <paramref name="positionJacobianTimesVelocity"/>.
+    /// </summary>
+    /// <param name="time">The time of the linearisation.</param>
+    /// <param name="positions">x, 3 values per particle.</param>
+    /// <param name="velocities">v, 3 values per particle.</param>
+    /// <param name="positionScale">a, the scale of df/dx in J.</param>
+    /// <param name="velocityScale">b, the scale of df/dv in J.</param>
+    /// <param name="userForces">How forces that supply no Jacobian of their own enter J.</param>
+    /// <param name="positionJacobianTimesVelocity">Receives (df/dx) v added to what it holds, 3 values per particle.</param>
+    void Linearize(
+        double time,
+        ReadOnlySpan<double> positions,
+        ReadOnlySpan<double> velocities,
+        double positionScale,
+        double velocityScale,
+        UserForceTreatment userForces,
+        Span<double> positionJacobianTimesVelocity);
+
+    /// <summary>Adds J w into <paramref name="result"/> (3 values per particle each).</summary>
+    void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result);
+
+    /// <summary>Adds the diagonal 3 x 3 blocks J_ii into <paramref name="blocks"/> (9 values per particle, row-major).</summary>
+    void AddDiagonalBlocks(Span<double> blocks);
+}
