@@ -1,6 +1,6 @@
 using System;
-using ParticlePhysics.Parallel;
 using ParticlePhysics.Numerics;
+using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics;
 

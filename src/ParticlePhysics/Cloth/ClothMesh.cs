@@ -1,6 +1,6 @@
 using System;
-using ParticlePhysics.Numerics;
 using System.Numerics;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Cloth;
 

@@ -1,7 +1,7 @@
 using System;
-using ParticlePhysics.Numerics;
 using System.Numerics;
 using ParticlePhysics.Forces;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Cloth;
 
