@@ -23,6 +23,7 @@ namespace ParticlePhysics;
 public sealed class ParticleWorld : ILinearizableSystem
 {
     private readonly List<IForceGenerator> _forceGenerators = new();
+    private readonly List<IConstraintSet> _constraintSets = new();
 
     // The implicit stepper's linearisation (ILinearizableSystem): the generators linearised at the last Linearize,
     // and the finite-difference wrappers of those that supply no Jacobian of their own, kept while they are added.
@@ -107,6 +108,9 @@ public sealed class ParticleWorld : ILinearizableSystem
 
     /// <summary>The force generators, in the order they are evaluated.</summary>
     public IReadOnlyList<IForceGenerator> Forces => _forceGenerators;
+
+    /// <summary>The constraint sets (rods, cables, contacts, ...), in the order their stage applies them.</summary>
+    public IReadOnlyList<IConstraintSet> Constraints => _constraintSets;
 
     /// <summary>The positions, 3 values per particle (x0, y0, z0, x1, ...). Valid until the system next changes.</summary>
     public ReadOnlySpan<double> Positions => _state.AsSpan(0, 3 * _count);
@@ -320,9 +324,27 @@ public sealed class ParticleWorld : ILinearizableSystem
         return true;
     }
 
+    /// <summary>Adds a constraint set; the constraint stage applies it from the next step on, after the sets before it.</summary>
+    /// <exception cref="ArgumentException">The set is already in this world.</exception>
+    public void AddConstraints(IConstraintSet constraints)
+    {
+        Guard.NotNull(constraints, nameof(constraints));
+        if (_constraintSets.Contains(constraints))
+        {
+            throw new ArgumentException("This constraint set is already in the world.", nameof(constraints));
+        }
+
+        _constraintSets.Add(constraints);
+    }
+
+    /// <summary>Removes a constraint set; returns false when it was not in the world.</summary>
+    public bool RemoveConstraints(IConstraintSet constraints) => _constraintSets.Remove(constraints);
+
     /// <summary>
-    /// Advances the system by one step of <paramref name="dt"/> seconds with <paramref name="integrator"/>.
-    /// The integrator writes into a scratch buffer; the result is committed only if it is finite.
+    /// Advances the system by one step of <paramref name="dt"/> seconds with <paramref name="integrator"/>, in stages:
+    /// the integrator advances the state under the forces into a scratch buffer; the constraint stage corrects it
+    /// (<see cref="IConstraintSet.Resolve"/>, every set in order); the result is committed only if it is finite and
+    /// within <see cref="DivergenceLimit"/>. If any stage throws, the world is left exactly as it was.
     /// </summary>
     /// <exception cref="ArgumentOutOfRangeException"><paramref name="dt"/> is not a positive finite number.</exception>
     /// <exception cref="SimulationDivergedException">
@@ -342,6 +364,7 @@ public sealed class ParticleWorld : ILinearizableSystem
 
         var current = _state.AsSpan(0, dimension);
         integrator.Step(this, _time, current, _next, dt);
+        ResolveConstraints(current, dt);
         var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
         if (bad >= 0)
         {
@@ -352,6 +375,24 @@ public sealed class ParticleWorld : ILinearizableSystem
         // Commit by swapping the buffers (the spans handed out before the step are documented as stale after it).
         (_state, _next) = (_next, _state);
         _time += dt;
+    }
+
+    /// <summary>The constraint stage after a force-based step: every set corrects the end state in the scratch buffer.</summary>
+    private void ResolveConstraints(Span<double> start, double dt)
+    {
+        if (_constraintSets.Count == 0)
+        {
+            return;
+        }
+
+        var n = 3 * _count;
+        var end = _next.AsSpan(0, 2 * n);
+        var context = new ConstraintContext(
+            _time, dt, start.Slice(0, n), start.Slice(n, n), end.Slice(0, n), end.Slice(n, n), Masses, InverseMasses);
+        for (var c = 0; c < _constraintSets.Count; c++)
+        {
+            _constraintSets[c].Resolve(in context);
+        }
     }
 
     /// <summary>Writes dy/dt = [v | F / m] for the state <paramref name="state"/> at time <paramref name="time"/>.</summary>

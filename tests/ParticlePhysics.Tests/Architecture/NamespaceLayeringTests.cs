@@ -1,5 +1,8 @@
 using System.Collections.Generic;
+using System.IO;
 using System.Linq;
+using System.Text.RegularExpressions;
+using ParticlePhysics.Tests.Engine;
 using ParticlePhysics.Tests.Support;
 
 namespace ParticlePhysics.Tests.Architecture;
@@ -39,6 +42,31 @@ public class NamespaceLayeringTests
         var edges = NamespaceEdges();
         Assert.Contains(("ParticlePhysics", "ParticlePhysics.Numerics"), edges.Keys);
         Assert.Contains(("ParticlePhysics.Cloth", "ParticlePhysics.Forces"), edges.Keys);
+    }
+
+    [Fact]
+    public void The_architecture_page_names_every_namespace_and_allows_every_use()
+    {
+        // docs/architecture.md has a table: | `Folder/` (or root) | what lives there | may use |. The tree and the
+        // page must agree: every namespace of the assembly has a row, and every use is one its row allows.
+        var page = File.ReadAllText(Path.Combine(ReadmeExamplesTests.RepositoryRoot(), "docs", "architecture.md"));
+        var allowed = new Dictionary<string, HashSet<string>>();
+        foreach (Match row in Regex.Matches(page, @"^\| (root \(`ParticlePhysics`\)|`(\w+)/`) \|[^|]*\| ([^|]*) \|$", RegexOptions.Multiline))
+        {
+            var name = row.Groups[2].Success ? "ParticlePhysics." + row.Groups[2].Value : "ParticlePhysics";
+            var uses = row.Groups[3].Value.Split(',').Select(u => u.Trim())
+                .Where(u => u.Length > 0 && u != "nothing of the core")
+                .Select(u => u == "root" ? "ParticlePhysics" : "ParticlePhysics." + u);
+            allowed[name] = new HashSet<string>(uses);
+        }
+
+        var edges = NamespaceEdges();
+        using var metadata = new CoreMetadata();
+        var namespaces = metadata.Reader.TypeDefinitions.Select(metadata.NamespaceOf)
+            .Where(n => n.StartsWith("ParticlePhysics", System.StringComparison.Ordinal)).Distinct().OrderBy(n => n);
+        Assert.Equal(namespaces, allowed.Keys.OrderBy(n => n));
+        var forbidden = edges.Where(e => !allowed[e.Key.From].Contains(e.Key.To)).Select(e => e.Value).ToArray();
+        Assert.True(forbidden.Length == 0, "Uses the architecture page does not allow: " + string.Join("; ", forbidden));
     }
 
     /// <summary>Every pair of distinct namespaces (A uses B), with one example of a type of A using a type of B.</summary>

@@ -1,0 +1,80 @@
+using System;
+
+namespace ParticlePhysics;
+
+/// <summary>
+/// What the world hands a constraint set (<see cref="IConstraintSet"/>): an interval of time, the state at its start,
+/// the state at its end to correct in place, and the particles' masses, as flat buffers of 3 values per particle
+/// (one per particle for the masses).
+/// </summary>
+/// <remarks>
+/// After a force-based integrator's step the interval is the whole step; inside the position-based integrator it is
+/// one substep. The end state is the world's scratch buffer: it is committed only if every stage succeeds, so a set
+/// that throws leaves the world as it was.
+/// </remarks>
+public readonly ref struct ConstraintContext
+{
+    /// <summary>Creates a context; the world does this, user code only in tests of its own constraint sets.</summary>
+    /// <param name="time">The time at the start of the interval, in seconds.</param>
+    /// <param name="dt">The length of the interval, in seconds.</param>
+    /// <param name="startPositions">The positions at the start, 3 values per particle.</param>
+    /// <param name="startVelocities">The velocities at the start, 3 values per particle.</param>
+    /// <param name="positions">The positions at the end, 3 values per particle, to correct in place.</param>
+    /// <param name="velocities">The velocities at the end, 3 values per particle, to correct in place.</param>
+    /// <param name="masses">The masses, one per particle.</param>
+    /// <param name="inverseMasses">The inverse masses, one per particle: 0 for a pinned particle.</param>
+    public ConstraintContext(
+        double time,
+        double dt,
+        ReadOnlySpan<double> startPositions,
+        ReadOnlySpan<double> startVelocities,
+        Span<double> positions,
+        Span<double> velocities,
+        ReadOnlySpan<double> masses,
+        ReadOnlySpan<double> inverseMasses)
+    {
+        var n = 3 * masses.Length;
+        if (startPositions.Length != n || startVelocities.Length != n || positions.Length != n || velocities.Length != n
+            || inverseMasses.Length != masses.Length)
+        {
+            throw new ArgumentException(
+                "positions and velocities need 3 values per particle, and masses and inverse masses one each.");
+        }
+
+        Time = time;
+        Dt = dt;
+        StartPositions = startPositions;
+        StartVelocities = startVelocities;
+        Positions = positions;
+        Velocities = velocities;
+        Masses = masses;
+        InverseMasses = inverseMasses;
+    }
+
+    /// <summary>The time at the start of the interval, in seconds.</summary>
+    public double Time { get; }
+
+    /// <summary>The length of the interval, in seconds.</summary>
+    public double Dt { get; }
+
+    /// <summary>The number of particles.</summary>
+    public int Count => Masses.Length;
+
+    /// <summary>The positions at the start of the interval, 3 values per particle.</summary>
+    public ReadOnlySpan<double> StartPositions { get; }
+
+    /// <summary>The velocities at the start of the interval, 3 values per particle.</summary>
+    public ReadOnlySpan<double> StartVelocities { get; }
+
+    /// <summary>The positions at the end of the interval, 3 values per particle: correct them in place.</summary>
+    public Span<double> Positions { get; }
+
+    /// <summary>The velocities at the end of the interval, 3 values per particle: correct them in place.</summary>
+    public Span<double> Velocities { get; }
+
+    /// <summary>The masses, one per particle, in kilograms.</summary>
+    public ReadOnlySpan<double> Masses { get; }
+
+    /// <summary>The inverse masses, one per particle: 1 / m, or 0 for a pinned particle (which no constraint moves).</summary>
+    public ReadOnlySpan<double> InverseMasses { get; }
+}
