@@ -219,16 +219,18 @@ namespace ParticlePhysics.RuntimeComparison
             var rk4 = new RungeKutta4();
             const int StepsPerBatch = 16;
             Run(world, rk4, 0.001, 2 * StepsPerBatch);
-            var batches = new double[7];
-            for (var b = 0; b < batches.Length; b++)
+            var wall = new double[7];
+            var cpu = new double[7];
+            for (var b = 0; b < wall.Length; b++)
             {
                 world.SetState(initial);
-                var watch = Stopwatch.StartNew();
+                var timer = Timer.Start();
                 Run(world, rk4, 0.001, StepsPerBatch);
-                batches[b] = watch.Elapsed.TotalMilliseconds * 1000 / StepsPerBatch;
+                wall[b] = timer.WallMilliseconds * 1000 / StepsPerBatch;
+                cpu[b] = timer.CpuMilliseconds * 1000 / StepsPerBatch;
             }
 
-            PrintTime("rk4-step-64", Median(batches), "us");
+            PrintTime("rk4-step-64", Median(wall), Median(cpu), "us");
         }
 
         // One simulated second of the 64 x 64 cloth under implicit Euler at 60 Hz, from rest (the solver's hardest
@@ -238,9 +240,9 @@ namespace ParticlePhysics.RuntimeComparison
             Run(Cloth(64), new ImplicitEuler(), 1.0 / 60, 3);
             var world = Cloth(64);
             var implicitEuler = new ImplicitEuler();
-            var watch = Stopwatch.StartNew();
+            var timer = Timer.Start();
             Run(world, implicitEuler, 1.0 / 60, 60);
-            PrintTime("implicit-euler-64-second", watch.Elapsed.TotalMilliseconds, "ms");
+            PrintTime("implicit-euler-64-second", timer.WallMilliseconds, timer.CpuMilliseconds, "ms");
         }
 
         // What a frame of the Unity sample costs at each size: its Update (steps, interpolation, normals, the stand-in
@@ -256,16 +258,17 @@ namespace ParticlePhysics.RuntimeComparison
                 }
 
                 const int Frames = 120;
-                var watch = Stopwatch.StartNew();
+                var timer = Timer.Start();
                 for (var frame = 0; frame < Frames; frame++)
                 {
                     PlayerLoop.RunFrame(1f / 60);
                 }
 
-                var perFrame = watch.Elapsed.TotalMilliseconds / Frames;
+                var wall = timer.WallMilliseconds / Frames;
+                var cpu = timer.CpuMilliseconds / Frames;
                 RequireNoUnityErrors();
                 PlayerLoop.Reset();
-                PrintTime("sample-frame-" + n.ToString(CultureInfo.InvariantCulture), perFrame, "ms");
+                PrintTime("sample-frame-" + n.ToString(CultureInfo.InvariantCulture), wall, cpu, "ms");
             }
         }
 
@@ -336,8 +339,9 @@ namespace ParticlePhysics.RuntimeComparison
         private static void Print(string name, ulong hash) =>
             Console.WriteLine("hash " + name + " " + hash.ToString("x16", CultureInfo.InvariantCulture));
 
-        private static void PrintTime(string name, double value, string unit) =>
-            Console.WriteLine("time " + name + " " + value.ToString("F3", CultureInfo.InvariantCulture) + " " + unit);
+        // "time <case> <wall> <cpu> <unit>"; cpu is -1 where the thread's CPU time cannot be read.
+        private static void PrintTime(string name, double wall, double cpu, string unit) =>
+            Console.WriteLine(string.Format(CultureInfo.InvariantCulture, "time {0} {1:F3} {2:F3} {3}", name, wall, cpu, unit));
 
         private static string RuntimeDescription()
         {
@@ -365,6 +369,85 @@ namespace ParticlePhysics.RuntimeComparison
             public UnityEngine.Vector3[] MeshVertices() => _mesh.vertices;
 
             public UnityEngine.Vector3[] MeshNormals() => _mesh.normals;
+        }
+    }
+
+    /// <summary>
+    /// Wall time, and the CPU time of the calling thread (getrusage RUSAGE_THREAD on Linux, microseconds): on a machine
+    /// that other work loads, the thread's CPU time leaves out the time it waited for a core, which wall time counts.
+    /// </summary>
+    internal sealed class Timer
+    {
+        private const int RusageThread = 1;
+        private readonly Stopwatch _wall;
+        private readonly double _cpuStart;
+
+        private Timer()
+        {
+            _cpuStart = ThreadCpuMilliseconds();
+            _wall = Stopwatch.StartNew();
+        }
+
+        public double WallMilliseconds => _wall.Elapsed.TotalMilliseconds;
+
+        public double CpuMilliseconds
+        {
+            get
+            {
+                var now = ThreadCpuMilliseconds();
+                return now < 0 || _cpuStart < 0 ? -1 : now - _cpuStart;
+            }
+        }
+
+        public static Timer Start() => new Timer();
+
+        private static double ThreadCpuMilliseconds()
+        {
+            try
+            {
+                ResourceUsage usage;
+                if (getrusage(RusageThread, out usage) != 0)
+                {
+                    return -1;
+                }
+
+                return ((usage.UserSeconds + usage.SystemSeconds) * 1000.0) + ((usage.UserMicroseconds + usage.SystemMicroseconds) / 1000.0);
+            }
+            catch (DllNotFoundException)
+            {
+                return -1;
+            }
+            catch (EntryPointNotFoundException)
+            {
+                return -1;
+            }
+        }
+
+        [DllImport("libc", SetLastError = true)]
+        private static extern int getrusage(int who, out ResourceUsage usage);
+
+        // struct rusage on 64-bit Linux: two struct timeval (ru_utime, ru_stime), then 14 longs.
+        [StructLayout(LayoutKind.Sequential)]
+        private struct ResourceUsage
+        {
+            public long UserSeconds;
+            public long UserMicroseconds;
+            public long SystemSeconds;
+            public long SystemMicroseconds;
+            public long MaxResidentSetSize;
+            public long SharedMemory;
+            public long UnsharedData;
+            public long UnsharedStack;
+            public long MinorFaults;
+            public long MajorFaults;
+            public long Swaps;
+            public long BlocksIn;
+            public long BlocksOut;
+            public long MessagesSent;
+            public long MessagesReceived;
+            public long Signals;
+            public long VoluntarySwitches;
+            public long InvoluntarySwitches;
         }
     }
 
