@@ -629,7 +629,6 @@ namespace UnityEngine
     public sealed class QualitySettings : Object { }
     public sealed class SystemInfo { }
     public class PlayerPrefs { }
-    public sealed class Network { }
 }
 
 namespace UnityEngine.Rendering
