@@ -1,7 +1,8 @@
 // The Mono comparison program: the same source, compiled by Mono's mcs and run on Mono, and compiled by the .NET SDK
 // (RuntimeComparison.csproj) and run on CoreCLR, against the same netstandard2.1 ParticlePhysics.dll. It prints one
-// line per result, "hash <case> <FNV-1a of the raw bits>", which .ci/mono requires to be equal on both runtimes, and
-// "time <case> <value> <unit>", of which .ci/mono prints the Mono / CoreCLR ratios. See README.md beside it.
+// line per result, "hash <case> <FNV-1a of the raw bits>" and "count <case> ..." (solver iterations), which .ci/mono
+// requires to be equal on both runtimes, and "time <case> <wall> <cpu> <unit>", of which .ci/mono prints the
+// Mono / CoreCLR ratios. See README.md beside it.
 //
 // C# 7.2 at most (mcs -langversion:7.2): no nullable annotations, no file-scoped namespace, no switch expressions.
 // Hashes read the bits of the doubles and floats, never their text: "R" formatting differs between the runtimes.
@@ -240,9 +241,16 @@ namespace ParticlePhysics.RuntimeComparison
             Run(Cloth(64), new ImplicitEuler(), 1.0 / 60, 3);
             var world = Cloth(64);
             var implicitEuler = new ImplicitEuler();
+            long iterations = 0;
             var timer = Timer.Start();
-            Run(world, implicitEuler, 1.0 / 60, 60);
+            for (var step = 0; step < 60; step++)
+            {
+                world.Step(implicitEuler, 1.0 / 60);
+                iterations += implicitEuler.LastIterations;
+            }
+
             PrintTime("implicit-euler-64-second", timer.WallMilliseconds, timer.CpuMilliseconds, "ms");
+            PrintIterations("implicit-euler-64-second", iterations, 60);
         }
 
         // What a frame of the Unity sample costs at each size: its Update (steps, interpolation, normals, the stand-in
@@ -251,24 +259,29 @@ namespace ParticlePhysics.RuntimeComparison
         {
             foreach (var n in _frameSizes)
             {
-                StartSample(n);
+                var sample = StartSample(n);
                 for (var frame = 0; frame < 60; frame++)
                 {
                     PlayerLoop.RunFrame(1f / 60);
                 }
 
                 const int Frames = 120;
+                var solver = (ImplicitEuler)sample.Component.Driver.Integrator;
+                long iterations = 0;
                 var timer = Timer.Start();
                 for (var frame = 0; frame < Frames; frame++)
                 {
                     PlayerLoop.RunFrame(1f / 60);
+                    iterations += solver.LastIterations;
                 }
 
                 var wall = timer.WallMilliseconds / Frames;
                 var cpu = timer.CpuMilliseconds / Frames;
                 RequireNoUnityErrors();
                 PlayerLoop.Reset();
-                PrintTime("sample-frame-" + n.ToString(CultureInfo.InvariantCulture), wall, cpu, "ms");
+                var name = "sample-frame-" + n.ToString(CultureInfo.InvariantCulture);
+                PrintTime(name, wall, cpu, "ms");
+                PrintIterations(name, iterations, Frames);
             }
         }
 
@@ -279,7 +292,7 @@ namespace ParticlePhysics.RuntimeComparison
             var cloth = gameObject.AddComponent<SimulatedCloth>();
             cloth.particlesPerSide = particlesPerSide;
             PlayerLoop.RunFrame(0f);   // Start, then an Update of no time
-            return new SampleHandle(gameObject);
+            return new SampleHandle(gameObject, cloth);
         }
 
         private static void RequireNoUnityErrors()
@@ -339,6 +352,11 @@ namespace ParticlePhysics.RuntimeComparison
         private static void Print(string name, ulong hash) =>
             Console.WriteLine("hash " + name + " " + hash.ToString("x16", CultureInfo.InvariantCulture));
 
+        // "count <case> cg-iterations-per-step <mean>": deterministic, the same on both runtimes.
+        private static void PrintIterations(string name, long iterations, int steps) =>
+            Console.WriteLine(string.Format(
+                CultureInfo.InvariantCulture, "count {0} cg-iterations-per-step {1:F1}", name, (double)iterations / steps));
+
         // "time <case> <wall> <cpu> <unit>"; cpu is -1 where the thread's CPU time cannot be read.
         private static void PrintTime(string name, double wall, double cpu, string unit) =>
             Console.WriteLine(string.Format(CultureInfo.InvariantCulture, "time {0} {1:F3} {2:F3} {3}", name, wall, cpu, unit));
@@ -361,10 +379,13 @@ namespace ParticlePhysics.RuntimeComparison
         {
             private readonly UnityEngine.Mesh _mesh;
 
-            public SampleHandle(UnityEngine.GameObject gameObject)
+            public SampleHandle(UnityEngine.GameObject gameObject, SimulatedCloth component)
             {
                 _mesh = gameObject.GetComponent<UnityEngine.MeshFilter>().sharedMesh;
+                Component = component;
             }
+
+            public SimulatedCloth Component { get; }
 
             public UnityEngine.Vector3[] MeshVertices() => _mesh.vertices;
 
