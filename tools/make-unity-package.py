@@ -4,9 +4,10 @@
     python3 tools/make-unity-package.py                    # builds Release, writes artifacts/unity/com.particlephysics.core
     python3 tools/make-unity-package.py --dll path/to/ParticlePhysics.dll --out DIR
 
-The folder holds package.json, README.md, LICENSE.md, Documentation~/unity.md and Runtime/ with the DLL and its
-XML docs, and a .meta file beside every asset and folder, as Unity requires in an immutable (git or registry)
-package. Each .meta's GUID is the MD5 of the package name and the asset's path, so it stays the same from run to
+The folder holds package.json, README.md (the package users' README, src/ParticlePhysics/README.md), LICENSE.md,
+CHANGELOG.md, Documentation~/unity.md, Runtime/ with the DLL and its XML docs, and Samples~/Cloth with the sample
+MonoBehaviour (samples/unity/Cloth, listed under "samples" in package.json: Package Manager offers to import it), and a
+.meta file beside every asset and folder, as Unity requires in an immutable (git or registry) package. Each .meta's GUID is the MD5 of the package name and the asset's path, so it stays the same from run to
 run and from version to version: Unity keeps the references of scenes and prefabs to the plugin across upgrades.
 No .asmdef: Unity references a precompiled plugin DLL from every script assembly by itself (its PluginImporter
 meta says "Any platform"). Standard library only, so that it runs wherever the .NET SDK does.
@@ -26,6 +27,13 @@ DISPLAY_NAME = "ParticlePhysics"
 UNITY_VERSION = "2021.3"
 ROOT = Path(__file__).resolve().parent.parent
 PROJECT = ROOT / "src" / "ParticlePhysics" / "ParticlePhysics.csproj"
+PACKAGE_README = ROOT / "src" / "ParticlePhysics" / "README.md"
+SAMPLES = [
+    # (folder under Samples~, source folder, display name, description)
+    ("Cloth", ROOT / "samples" / "unity" / "Cloth", "Simulated cloth",
+     "A MonoBehaviour that hangs a cloth from two corners, steps it at 60 Hz with implicit Euler out of Update and "
+     "draws it through a MeshFilter, interpolated, without allocating per frame; save and restore included."),
+]
 
 DESCRIPTION = (
     "A particle (point mass) physics engine in double precision: a state-vector particle system, force generators "
@@ -47,6 +55,21 @@ TEXT_META = """fileFormatVersion: 2
 guid: {guid}
 TextScriptImporter:
   externalObjects: {{}}
+  userData:
+  assetBundleName:
+  assetBundleVariant:
+"""
+
+# A C# script. Samples~ is not imported in place, but Package Manager copies a sample with its .meta files into
+# Assets/Samples/, so a fixed GUID keeps the scenes that use the script working across versions.
+SCRIPT_META = """fileFormatVersion: 2
+guid: {guid}
+MonoImporter:
+  externalObjects: {{}}
+  serializedVersion: 2
+  defaultReferences: []
+  executionOrder: 0
+  icon: {{instanceID: 0}}
   userData:
   assetBundleName:
   assetBundleVariant:
@@ -152,11 +175,15 @@ def main() -> int:
         "license": "MIT",
         "keywords": ["physics", "particles", "cloth", "mass-spring", "integrator"],
         "author": {"name": "The ParticlePhysics contributors"},
+        "samples": [
+            {"displayName": display, "description": description, "path": f"Samples~/{folder}"}
+            for folder, _, display, description in SAMPLES
+        ],
     }
     write(package / "package.json", json.dumps(manifest, indent=2) + "\n")
     write(package / "package.json.meta", MANIFEST_META.format(guid=guid("package.json")))
 
-    for source, name in ((ROOT / "README.md", "README.md"), (ROOT / "LICENSE", "LICENSE.md")):
+    for source, name in ((PACKAGE_README, "README.md"), (ROOT / "LICENSE", "LICENSE.md"), (ROOT / "CHANGELOG.md", "CHANGELOG.md")):
         shutil.copyfile(source, package / name)
         write(package / f"{name}.meta", TEXT_META.format(guid=guid(name)))
 
@@ -171,6 +198,13 @@ def main() -> int:
     write(runtime / "ParticlePhysics.dll.meta", PLUGIN_META.format(guid=guid("Runtime/ParticlePhysics.dll")))
     shutil.copyfile(xml, runtime / "ParticlePhysics.xml")
     write(runtime / "ParticlePhysics.xml.meta", TEXT_META.format(guid=guid("Runtime/ParticlePhysics.xml")))
+
+    for folder, source, _, _ in SAMPLES:
+        for script in sorted(source.glob("*.cs")):
+            asset = f"Samples~/{folder}/{script.name}"
+            (package / asset).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(script, package / asset)
+            write(package / f"{asset}.meta", SCRIPT_META.format(guid=guid(asset)))
 
     print(package)
     return 0

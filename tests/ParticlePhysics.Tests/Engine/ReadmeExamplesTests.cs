@@ -8,8 +8,8 @@ using ParticlePhysics.Integrators;
 namespace ParticlePhysics.Tests.Engine;
 
 /// <summary>
-/// The README's C# snippets are this file's code: each test runs the code, and a last test checks that every
-/// snippet in the README is, line for line, the region of this file with the same name.
+/// The README's C# snippets (and the NuGet package README's) are this file's code: each test runs the code, and a last
+/// test checks that every snippet in the READMEs is, line for line, the region of this file with the same name.
 /// </summary>
 public partial class ReadmeExamplesTests
 {
@@ -53,13 +53,15 @@ public partial class ReadmeExamplesTests
         Assert.Equal(0, system.GetVelocity(0).Y);
     }
 
-    [Fact]
-    public void Every_readme_snippet_is_the_code_the_tests_run()
+    [Theory]
+    [InlineData("README.md", 2)]
+    [InlineData("src/ParticlePhysics/README.md", 1)]   // the NuGet package's README
+    public void Every_readme_snippet_is_the_code_the_tests_run(string readmePath, int snippets)
     {
-        var readme = File.ReadAllText(Path.Combine(RepositoryRoot(), "README.md"));
+        var readme = File.ReadAllText(Path.Combine(RepositoryRoot(), readmePath));
         var source = File.ReadAllText(ThisFile());
         var blocks = ReadmeSnippet().Matches(readme);
-        Assert.Equal(2, blocks.Count);
+        Assert.Equal(snippets, blocks.Count);
         foreach (Match block in blocks)
         {
             var name = block.Groups["name"].Value;

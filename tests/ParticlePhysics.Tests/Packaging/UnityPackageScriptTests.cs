@@ -13,12 +13,14 @@ public class UnityPackageScriptTests
 {
     private static readonly string[] _expectedFiles =
     {
+        "CHANGELOG.md", "CHANGELOG.md.meta",
         "Documentation~/unity.md",
         "LICENSE.md", "LICENSE.md.meta",
         "README.md", "README.md.meta",
         "Runtime.meta",
         "Runtime/ParticlePhysics.dll", "Runtime/ParticlePhysics.dll.meta",
         "Runtime/ParticlePhysics.xml", "Runtime/ParticlePhysics.xml.meta",
+        "Samples~/Cloth/SimulatedCloth.cs", "Samples~/Cloth/SimulatedCloth.cs.meta",
         "package.json", "package.json.meta",
     };
 
@@ -51,6 +53,19 @@ public class UnityPackageScriptTests
             Assert.Equal("MIT", json.GetProperty("license").GetString());
             Assert.False(string.IsNullOrWhiteSpace(json.GetProperty("displayName").GetString()));
             Assert.False(string.IsNullOrWhiteSpace(json.GetProperty("description").GetString()));
+            var sample = Assert.Single(json.GetProperty("samples").EnumerateArray().ToArray());
+            Assert.Equal("Samples~/Cloth", sample.GetProperty("path").GetString());
+            Assert.False(string.IsNullOrWhiteSpace(sample.GetProperty("displayName").GetString()));
+            Assert.False(string.IsNullOrWhiteSpace(sample.GetProperty("description").GetString()));
+
+            // The shipped script is the one the tests compile; the README is the package users' one.
+            Assert.Equal(
+                File.ReadAllText(Path.Combine(root, "samples/unity/Cloth/SimulatedCloth.cs")),
+                File.ReadAllText(Path.Combine(package, "Samples~/Cloth/SimulatedCloth.cs")));
+            Assert.Contains("MonoImporter:", File.ReadAllText(Path.Combine(package, "Samples~/Cloth/SimulatedCloth.cs.meta")), StringComparison.Ordinal);
+            Assert.Equal(
+                File.ReadAllText(Path.Combine(root, "src/ParticlePhysics/README.md")),
+                File.ReadAllText(Path.Combine(package, "README.md")));
 
             var pluginMeta = File.ReadAllText(Path.Combine(package, "Runtime/ParticlePhysics.dll.meta"));
             Assert.Contains("PluginImporter:", pluginMeta, StringComparison.Ordinal);

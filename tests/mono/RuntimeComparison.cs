@@ -1,0 +1,541 @@
+// The Mono comparison program: the same source, compiled by Mono's mcs and run on Mono, and compiled by the .NET SDK
+// (RuntimeComparison.csproj) and run on CoreCLR, against the same netstandard2.1 ParticlePhysics.dll. It prints one
+// line per result, "hash <case> <FNV-1a of the raw bits>" and "count <case> ..." (solver iterations), which .ci/mono
+// requires to be equal on both runtimes, and "time <case> <wall> <cpu> <unit>", of which .ci/mono prints the
+// Mono / CoreCLR ratios. See README.md beside it.
+//
+// C# 7.2 at most (mcs -langversion:7.2): no nullable annotations, no file-scoped namespace, no switch expressions.
+// Hashes read the bits of the doubles and floats, never their text: "R" formatting differs between the runtimes.
+using System;
+using System.Collections.Generic;
+using System.Diagnostics;
+using System.Globalization;
+using System.IO;
+using System.Runtime.InteropServices;
+using ParticlePhysics.Cloth;
+using ParticlePhysics.Driver;
+using ParticlePhysics.Integrators;
+using ParticlePhysics.Parallel;
+using ParticlePhysics.Scenarios;
+using ParticlePhysics.Snapshots;
+using UnityEngine.StandIn;
+
+namespace ParticlePhysics.RuntimeComparison
+{
+    /// <summary>Runs every comparison case, then the timings, and prints their results.</summary>
+    internal static class Program
+    {
+        /// <summary>The sizes (particles per side) of the sample's per-frame timings, up to the Inspector's largest.</summary>
+        private static readonly int[] _frameSizes = { 8, 16, 21, 32, 48, 64 };
+
+        private static int Main(string[] args)
+        {
+            var timings = args.Length == 0 || Array.IndexOf(args, "--timings") >= 0;
+            var hashes = args.Length == 0 || Array.IndexOf(args, "--hashes") >= 0;
+            if (!timings && !hashes)
+            {
+                Console.Error.WriteLine("usage: RuntimeComparison [--hashes] [--timings] (default: both)");
+                return 2;
+            }
+
+            Console.WriteLine("runtime " + RuntimeDescription());
+            if (hashes)
+            {
+                EveryIntegrator();
+                DivergingRungeKutta4();
+                FixedTimestepDriverWithInterpolation();
+                Snapshots("implicit-euler");
+                Snapshots("rk45");
+                ParallelRunner();
+                UnitySample();
+            }
+
+            if (timings)
+            {
+                TimeRungeKutta4Step();
+                TimeImplicitEulerSecond();
+                TimeSampleFrames();
+            }
+
+            return 0;
+        }
+
+        // Every integrator of the catalog on the course's 16 x 16 cloth, 200 steps of 1 ms (stable for all of them):
+        // the state, the time and the integrator's own state.
+        private static void EveryIntegrator()
+        {
+            foreach (var name in IntegratorCatalog.Names)
+            {
+                var world = Cloth(16);
+                var integrator = IntegratorCatalog.Create(name);
+                for (var step = 0; step < 200; step++)
+                {
+                    world.Step(integrator, 0.001);
+                }
+
+                var hash = new BitHash();
+                hash.Add(world.Time);
+                hash.Add(world.State);
+                AddIntegratorState(hash, integrator);
+                Print("integrator/" + name, hash);
+            }
+        }
+
+        // RK4 at one 60 Hz frame per step on the 32 x 32 cloth diverges: where and when it says so, and the last good
+        // state it leaves the world in.
+        private static void DivergingRungeKutta4()
+        {
+            var world = Cloth(32);
+            var rk4 = new RungeKutta4();
+            for (var step = 0; step < 600; step++)
+            {
+                try
+                {
+                    world.Step(rk4, 1.0 / 60);
+                }
+                catch (SimulationDivergedException e)
+                {
+                    var hash = new BitHash();
+                    hash.Add(step);
+                    hash.Add(e.Time);
+                    hash.Add(e.LastFiniteTime);
+                    hash.Add(e.Particle);
+                    hash.Add(e.Component);
+                    hash.Add(e.Value);
+                    hash.Add(e.Limit);
+                    hash.Add(world.Time);
+                    hash.Add(world.State);
+                    Print("rk4-divergence", hash);
+                    Console.WriteLine(string.Format(
+                        CultureInfo.InvariantCulture, "info rk4-divergence step {0}, particle {1}", step, e.Particle));
+                    return;
+                }
+            }
+
+            throw new InvalidOperationException("RK4 at dt = 1/60 s on the 32 x 32 cloth did not diverge in 600 steps.");
+        }
+
+        // The fixed-timestep driver under uneven frame times (and one hitch past MaxStepsPerFrame), with sub-steps: the
+        // interpolated float positions of every frame, and the driver's counters.
+        private static void FixedTimestepDriverWithInterpolation()
+        {
+            var cloth = ClothBuilderFor(16).Build();
+            var driver = new FixedTimestepDriver(cloth.System, new SemiImplicitEuler(), 1.0 / 60, subSteps: 8);
+            var positions = new System.Numerics.Vector3[cloth.ParticleCount];
+            var hash = new BitHash();
+            for (var frame = 0; frame < 240; frame++)
+            {
+                var frameTime = frame == 100 ? 0.5 : (frame % 3 == 0 ? 0.021 : 0.013);
+                hash.Add(driver.Advance(frameTime));
+                hash.Add(driver.InterpolationFactor);
+                driver.InterpolatePositions(cloth.FirstParticle, cloth.ParticleCount, positions);
+                hash.Add(positions);
+            }
+
+            hash.Add(driver.StepCount);
+            hash.Add(driver.TotalDroppedTime);
+            hash.Add(cloth.System.State);
+            Print("driver", hash);
+        }
+
+        // Save and restore mid-run, in memory and through a stream into a world built anew: running on after either
+        // gives the bits of running on without them. The stream's bytes are compared across runtimes too.
+        private static void Snapshots(string integratorName)
+        {
+            var world = Cloth(16);
+            var integrator = IntegratorCatalog.Create(integratorName);
+            var dt = integratorName == "implicit-euler" ? 1.0 / 60 : 0.001;
+            Run(world, integrator, dt, 30);
+            var snapshot = SimulationSnapshot.Capture(world, integrator);
+            var stream = new MemoryStream();
+            snapshot.WriteTo(stream);
+
+            Run(world, integrator, dt, 30);
+            var straight = StateHash(world, integrator);
+
+            snapshot.RestoreTo(world, integrator);
+            Run(world, integrator, dt, 30);
+            var inMemory = StateHash(world, integrator);
+
+            var rebuilt = Cloth(16);
+            var freshIntegrator = IntegratorCatalog.Create(integratorName);
+            stream.Position = 0;
+            SimulationSnapshot.ReadFrom(stream).RestoreTo(rebuilt, freshIntegrator);
+            Run(rebuilt, freshIntegrator, dt, 30);
+            var throughStream = StateHash(rebuilt, freshIntegrator);
+
+            Require(inMemory == straight, "snapshot/" + integratorName + ": the run restored in memory differs from the straight run");
+            Require(throughStream == straight, "snapshot/" + integratorName + ": the run restored from a stream differs from the straight run");
+            Print("snapshot/" + integratorName + "/run", straight);
+            var bytes = new BitHash();
+            bytes.Add(stream.ToArray());
+            Print("snapshot/" + integratorName + "/stream", bytes.Value);
+        }
+
+        // WorkerThreadRunner with two threads gives the bits of one thread.
+        private static void ParallelRunner()
+        {
+            var single = Cloth(32);
+            var rk4 = new RungeKutta4();
+            Run(single, rk4, 0.001, 100);
+
+            var parallel = Cloth(32);
+            var parallelRk4 = new RungeKutta4();
+            using (var runner = new WorkerThreadRunner(2))
+            {
+                parallel.Runner = runner;
+                Run(parallel, parallelRk4, 0.001, 100);
+                parallel.Runner = null;
+            }
+
+            var one = StateHash(single, rk4);
+            var two = StateHash(parallel, parallelRk4);
+            Require(one == two, "parallel: WorkerThreadRunner(2) gives other bits than one thread");
+            Print("parallel", two);
+        }
+
+        // The Unity sample itself, on the stand-in UnityEngine: 120 frames of the default 21 x 21 cloth, every vertex
+        // and normal of the mesh.
+        private static void UnitySample()
+        {
+            var cloth = StartSample(21);
+            var hash = new BitHash();
+            for (var frame = 0; frame < 120; frame++)
+            {
+                PlayerLoop.RunFrame(frame % 2 == 0 ? 0.0125f : 0.02f);
+                hash.Add(MemoryMarshal.Cast<UnityEngine.Vector3, float>(cloth.MeshVertices()).ToArray());
+            }
+
+            hash.Add(MemoryMarshal.Cast<UnityEngine.Vector3, float>(cloth.MeshNormals()).ToArray());
+            RequireNoUnityErrors();
+            Print("unity-sample", hash);
+            PlayerLoop.Reset();
+        }
+
+        // One RK4 step of the 64 x 64 cloth at 1 ms: the median of 7 batches of 16 steps from rest, after a warm-up.
+        private static void TimeRungeKutta4Step()
+        {
+            var world = Cloth(64);
+            var initial = world.State.ToArray();
+            var rk4 = new RungeKutta4();
+            const int StepsPerBatch = 16;
+            Run(world, rk4, 0.001, 2 * StepsPerBatch);
+            var wall = new double[7];
+            var cpu = new double[7];
+            for (var b = 0; b < wall.Length; b++)
+            {
+                world.SetState(initial);
+                var timer = Timer.Start();
+                Run(world, rk4, 0.001, StepsPerBatch);
+                wall[b] = timer.WallMilliseconds * 1000 / StepsPerBatch;
+                cpu[b] = timer.CpuMilliseconds * 1000 / StepsPerBatch;
+            }
+
+            PrintTime("rk4-step-64", Median(wall), Median(cpu), "us");
+        }
+
+        // One simulated second of the 64 x 64 cloth under implicit Euler at 60 Hz, from rest (the solver's hardest
+        // frames), with the default tolerance 1e-6; a warm-up on another cloth first.
+        private static void TimeImplicitEulerSecond()
+        {
+            Run(Cloth(64), new ImplicitEuler(), 1.0 / 60, 3);
+            var world = Cloth(64);
+            var implicitEuler = new ImplicitEuler();
+            long iterations = 0;
+            var timer = Timer.Start();
+            for (var step = 0; step < 60; step++)
+            {
+                world.Step(implicitEuler, 1.0 / 60);
+                iterations += implicitEuler.LastIterations;
+            }
+
+            PrintTime("implicit-euler-64-second", timer.WallMilliseconds, timer.CpuMilliseconds, "ms");
+            PrintIterations("implicit-euler-64-second", iterations, 60);
+        }
+
+        // What a frame of the Unity sample costs at each size: its Update (steps, interpolation, normals, the stand-in
+        // Mesh's copies), averaged over seconds 1 to 3 of a 60 Hz run from rest (second 0 warms up).
+        private static void TimeSampleFrames()
+        {
+            foreach (var n in _frameSizes)
+            {
+                var sample = StartSample(n);
+                for (var frame = 0; frame < 60; frame++)
+                {
+                    PlayerLoop.RunFrame(1f / 60);
+                }
+
+                const int Frames = 120;
+                var solver = (ImplicitEuler)sample.Component.Driver.Integrator;
+                long iterations = 0;
+                var timer = Timer.Start();
+                for (var frame = 0; frame < Frames; frame++)
+                {
+                    PlayerLoop.RunFrame(1f / 60);
+                    iterations += solver.LastIterations;
+                }
+
+                var wall = timer.WallMilliseconds / Frames;
+                var cpu = timer.CpuMilliseconds / Frames;
+                RequireNoUnityErrors();
+                PlayerLoop.Reset();
+                var name = "sample-frame-" + n.ToString(CultureInfo.InvariantCulture);
+                PrintTime(name, wall, cpu, "ms");
+                PrintIterations(name, iterations, Frames);
+            }
+        }
+
+        private static SampleHandle StartSample(int particlesPerSide)
+        {
+            PlayerLoop.Reset();
+            var gameObject = new UnityEngine.GameObject("Cloth");
+            var cloth = gameObject.AddComponent<SimulatedCloth>();
+            cloth.particlesPerSide = particlesPerSide;
+            PlayerLoop.RunFrame(0f);   // Start, then an Update of no time
+            return new SampleHandle(gameObject, cloth);
+        }
+
+        private static void RequireNoUnityErrors()
+        {
+            Require(UnityEngine.Debug.Errors.Count == 0, "the Unity sample logged: " + string.Join("\n", UnityEngine.Debug.Errors));
+        }
+
+        private static ParticleWorld Cloth(int n) => new ClothScenario { Resolution = 1.0 / (n - 1) }.Build();
+
+        private static ClothBuilder ClothBuilderFor(int n) => new ClothScenario { Resolution = 1.0 / (n - 1) }.CreateBuilder();
+
+        private static void Run(ParticleWorld world, IIntegrator integrator, double dt, int steps)
+        {
+            for (var step = 0; step < steps; step++)
+            {
+                world.Step(integrator, dt);
+            }
+        }
+
+        private static ulong StateHash(ParticleWorld world, IIntegrator integrator)
+        {
+            var hash = new BitHash();
+            hash.Add(world.Time);
+            hash.Add(world.State);
+            AddIntegratorState(hash, integrator);
+            return hash.Value;
+        }
+
+        private static void AddIntegratorState(BitHash hash, IIntegrator integrator)
+        {
+            var stateful = integrator as IStatefulIntegrator;
+            if (stateful != null)
+            {
+                var state = new double[stateful.StateLength];
+                stateful.WriteState(state);
+                hash.Add(state);
+            }
+        }
+
+        private static double Median(double[] values)
+        {
+            var sorted = (double[])values.Clone();
+            Array.Sort(sorted);
+            return sorted[sorted.Length / 2];
+        }
+
+        private static void Require(bool condition, string message)
+        {
+            if (!condition)
+            {
+                throw new InvalidOperationException(message);
+            }
+        }
+
+        private static void Print(string name, BitHash hash) => Print(name, hash.Value);
+
+        private static void Print(string name, ulong hash) =>
+            Console.WriteLine("hash " + name + " " + hash.ToString("x16", CultureInfo.InvariantCulture));
+
+        // "count <case> cg-iterations-per-step <mean>": deterministic, the same on both runtimes.
+        private static void PrintIterations(string name, long iterations, int steps) =>
+            Console.WriteLine(string.Format(
+                CultureInfo.InvariantCulture, "count {0} cg-iterations-per-step {1:F1}", name, (double)iterations / steps));
+
+        // "time <case> <wall> <cpu> <unit>"; cpu is -1 where the thread's CPU time cannot be read.
+        private static void PrintTime(string name, double wall, double cpu, string unit) =>
+            Console.WriteLine(string.Format(CultureInfo.InvariantCulture, "time {0} {1:F3} {2:F3} {3}", name, wall, cpu, unit));
+
+        private static string RuntimeDescription()
+        {
+            var mono = Type.GetType("Mono.Runtime");
+            if (mono != null)
+            {
+                var display = mono.GetMethod(
+                    "GetDisplayName", System.Reflection.BindingFlags.NonPublic | System.Reflection.BindingFlags.Static);
+                return "Mono " + (display == null ? "(unknown version)" : Convert.ToString(display.Invoke(null, null), CultureInfo.InvariantCulture));
+            }
+
+            return RuntimeInformation.FrameworkDescription;
+        }
+
+        /// <summary>The sample's mesh, read through the stand-in UnityEngine.</summary>
+        private sealed class SampleHandle
+        {
+            private readonly UnityEngine.Mesh _mesh;
+
+            public SampleHandle(UnityEngine.GameObject gameObject, SimulatedCloth component)
+            {
+                _mesh = gameObject.GetComponent<UnityEngine.MeshFilter>().sharedMesh;
+                Component = component;
+            }
+
+            public SimulatedCloth Component { get; }
+
+            public UnityEngine.Vector3[] MeshVertices() => _mesh.vertices;
+
+            public UnityEngine.Vector3[] MeshNormals() => _mesh.normals;
+        }
+    }
+
+    /// <summary>
+    /// Wall time, and the CPU time of the calling thread (getrusage RUSAGE_THREAD on Linux, microseconds): on a machine
+    /// that other work loads, the thread's CPU time leaves out the time it waited for a core, which wall time counts.
+    /// </summary>
+    internal sealed class Timer
+    {
+        private const int RusageThread = 1;
+        private readonly Stopwatch _wall;
+        private readonly double _cpuStart;
+
+        private Timer()
+        {
+            _cpuStart = ThreadCpuMilliseconds();
+            _wall = Stopwatch.StartNew();
+        }
+
+        public double WallMilliseconds => _wall.Elapsed.TotalMilliseconds;
+
+        public double CpuMilliseconds
+        {
+            get
+            {
+                var now = ThreadCpuMilliseconds();
+                return now < 0 || _cpuStart < 0 ? -1 : now - _cpuStart;
+            }
+        }
+
+        public static Timer Start() => new Timer();
+
+        private static double ThreadCpuMilliseconds()
+        {
+            try
+            {
+                ResourceUsage usage;
+                if (getrusage(RusageThread, out usage) != 0)
+                {
+                    return -1;
+                }
+
+                return ((usage.UserSeconds + usage.SystemSeconds) * 1000.0) + ((usage.UserMicroseconds + usage.SystemMicroseconds) / 1000.0);
+            }
+            catch (DllNotFoundException)
+            {
+                return -1;
+            }
+            catch (EntryPointNotFoundException)
+            {
+                return -1;
+            }
+        }
+
+        [DllImport("libc", SetLastError = true)]
+        private static extern int getrusage(int who, out ResourceUsage usage);
+
+        // struct rusage on 64-bit Linux: two struct timeval (ru_utime, ru_stime), then 14 longs.
+        [StructLayout(LayoutKind.Sequential)]
+        private struct ResourceUsage
+        {
+            public long UserSeconds;
+            public long UserMicroseconds;
+            public long SystemSeconds;
+            public long SystemMicroseconds;
+            public long MaxResidentSetSize;
+            public long SharedMemory;
+            public long UnsharedData;
+            public long UnsharedStack;
+            public long MinorFaults;
+            public long MajorFaults;
+            public long Swaps;
+            public long BlocksIn;
+            public long BlocksOut;
+            public long MessagesSent;
+            public long MessagesReceived;
+            public long Signals;
+            public long VoluntarySwitches;
+            public long InvoluntarySwitches;
+        }
+    }
+
+    /// <summary>FNV-1a over 64-bit words: the raw bits of doubles, floats and integers, in order.</summary>
+    internal sealed class BitHash
+    {
+        private const ulong Prime = 1099511628211;
+
+        /// <summary>The hash so far.</summary>
+        public ulong Value { get; private set; } = 14695981039346656037;
+
+        public void Add(ulong word)
+        {
+            for (var i = 0; i < 8; i++)
+            {
+                Value = (Value ^ ((word >> (8 * i)) & 0xff)) * Prime;
+            }
+        }
+
+        public void Add(long value) => Add(unchecked((ulong)value));
+
+        public void Add(int value) => Add(unchecked((ulong)(uint)value));
+
+        public void Add(double value) => Add(BitConverter.DoubleToInt64Bits(value));
+
+        public void Add(ReadOnlySpan<double> values) => Add(values.ToArray());
+
+        public void Add(double[] values)
+        {
+            Add(values.Length);
+            foreach (var value in values)
+            {
+                Add(value);
+            }
+        }
+
+        public void Add(float[] values)
+        {
+            Add(values.Length);
+            var bits = new int[values.Length];
+            Buffer.BlockCopy(values, 0, bits, 0, 4 * values.Length);
+            foreach (var b in bits)
+            {
+                Add(b);
+            }
+        }
+
+        public void Add(System.Numerics.Vector3[] values)
+        {
+            var floats = new float[3 * values.Length];
+            for (var i = 0; i < values.Length; i++)
+            {
+                floats[3 * i] = values[i].X;
+                floats[(3 * i) + 1] = values[i].Y;
+                floats[(3 * i) + 2] = values[i].Z;
+            }
+
+            Add(floats);
+        }
+
+        public void Add(byte[] bytes)
+        {
+            Add(bytes.Length);
+            foreach (var b in bytes)
+            {
+                Add((int)b);
+            }
+        }
+    }
+}
