@@ -10,7 +10,7 @@ namespace ParticlePhysics.Numerics;
 /// AGM: a0 = 1, b0 = sqrt(1 - k^2), c0 = k; a(n+1) = (a + b) / 2, b(n+1) = sqrt(a b), c(n+1) = (a - b) / 2, until c is
 /// below rounding (quadratic convergence: about 5 terms in double precision for k &lt; 0.9999). Then K = pi / (2 a_N),
 /// and (Abramowitz and Stegun 16.4.3) phi_N = 2^N a_N u, phi(n-1) = (phi_n + asin(c_n sin(phi_n) / a_n)) / 2,
-/// sn = sin phi_0, cn = cos phi_0, dn = cos phi_0 / cos(phi_1 - phi_0). The argument is first reduced modulo the real
+/// sn = sin phi_0, cn = cos phi_0, dn = sqrt(cn^2 + k'^2 sn^2). The argument is first reduced modulo the real
 /// period 4 K, so that phi stays small and keeps its digits.
 /// </remarks>
 internal static class JacobiElliptic
@@ -42,15 +42,15 @@ internal static class JacobiElliptic
         }
 
         var phi = Math.Pow(2.0, terms) * a[terms] * u;
-        var previous = phi;
         for (var n = terms; n >= 1; n--)
         {
-            previous = phi;
             phi = 0.5 * (phi + Math.Asin(c[n] * Math.Sin(phi) / a[n]));
         }
 
-        var cn = Math.Cos(phi);
-        return (Math.Sin(phi), cn, cn / Math.Cos(previous - phi));
+        // dn^2 = 1 - k^2 sn^2 = cn^2 + k'^2 sn^2, without the cancellation of the first form (A and S's
+        // cos(phi_0) / cos(phi_1 - phi_0) is 0 / 0 where sn = 1).
+        double sn = Math.Sin(phi), cn = Math.Cos(phi), complement = (1.0 - k) * (1.0 + k);
+        return (sn, cn, Math.Sqrt((cn * cn) + (complement * sn * sn)));
     }
 
     /// <summary>Fills the AGM sequences a and c from (1, sqrt(1 - k^2), k); returns N, the last index.</summary>
