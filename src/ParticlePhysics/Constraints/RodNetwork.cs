@@ -162,6 +162,13 @@ public sealed class RodNetwork : IConstraintSet, IConstraintForces
         return _length[link];
     }
 
+    /// <summary>The particles a link joins; the second is -1 for a link to a fixed anchor.</summary>
+    public (int First, int Second) GetEnds(int link)
+    {
+        CheckLink(link);
+        return (_first[link], _second[link]);
+    }
+
     /// <summary>True when the link is a cable, false for a rod.</summary>
     public bool IsCable(int link)
     {
