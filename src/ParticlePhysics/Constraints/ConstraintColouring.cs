@@ -19,7 +19,7 @@ internal static class ConstraintColouring
     /// Fills <paramref name="order"/> with the constraints 0 .. count - 1 sorted by colour (stable: index order within a
     /// colour) and returns the start of each colour in it, with one last entry equal to <paramref name="count"/>.
     /// </summary>
-    public static int[] Colour(ReadOnlySpan<int> first, ReadOnlySpan<int> second, int count, int particleCount, int[] order)
+    public static int[] Colour(int[] first, int[] second, int count, int particleCount, int[] order)
     {
         // Constraints by particle (compressed rows), to find the colours already taken at each end.
         var start = new int[particleCount + 1];
