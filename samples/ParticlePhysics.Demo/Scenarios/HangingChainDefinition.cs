@@ -70,20 +70,30 @@ internal sealed class HangingChainDefinition : ScenarioDefinition
         };
     }
 
-    /// <summary><c>--particles N</c>: odd, 3 to 1001.</summary>
-    private static Option<int?> ParticlesOption()
+    /// <summary><c>--particles N</c>: odd, 3 to 1001, checked at parse time like every count.</summary>
+    private static Option<int?> ParticlesOption() => new("--particles")
     {
-        var option = Options.Count(
-            "--particles", "Number N of particles, odd", HangingChainScenario.MinParticles, _defaults.Particles, HangingChainScenario.MaxParticles);
-        option.Validators.Add(result =>
+        Description = "Number N of particles: odd, 3 to 1001",
+        HelpName = "N",
+        DefaultValueFactory = _ => _defaults.Particles,
+        CustomParser = result =>
         {
-            if (result.GetValueOrDefault<int?>() is { } n && n % 2 == 0)
+            var text = result.Tokens.Count > 0 ? result.Tokens[0].Value : null;
+            if (text is null)
+            {
+                return _defaults.Particles;
+            }
+
+            if (!int.TryParse(text, NumberStyles.Integer, CultureInfo.InvariantCulture, out var n)
+                || n < HangingChainScenario.MinParticles || n > HangingChainScenario.MaxParticles || n % 2 == 0)
             {
                 result.AddError(string.Create(
                     CultureInfo.InvariantCulture,
-                    $"--particles must be an odd whole number from {HangingChainScenario.MinParticles} to {HangingChainScenario.MaxParticles}; got '{n}'."));
+                    $"--particles must be an odd whole number from {HangingChainScenario.MinParticles} to {HangingChainScenario.MaxParticles}; got '{text}'."));
+                return null;
             }
-        });
-        return option;
-    }
+
+            return n;
+        },
+    };
 }
