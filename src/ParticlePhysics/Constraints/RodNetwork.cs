@@ -49,8 +49,8 @@ public sealed class RodNetwork : IConstraintSet, IConstraintForces
     private const double ProjectionTolerance = 1e-13;
     private const int MaxNewtonIterations = 20;
 
-    // Conjugate gradients stop at this relative residual, or after 2 n + 50 iterations.
-    private const double SolveTolerance = 1e-14;
+    // Conjugate gradients stop at this relative residual, or after 2 n + 50 iterations (n links).
+    private const double SolveTolerance = 1e-13;
 
     // The second end of a link to a fixed anchor.
     private const int Anchored = -1;
