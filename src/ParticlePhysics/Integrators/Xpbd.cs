@@ -53,8 +53,8 @@ public sealed class Xpbd : IPositionBasedIntegrator
 
     /// <summary>
     /// The number of substeps each step is split into, one projection pass each: a whole number from 1 to 1000
-    /// (default 10). More substeps make stiff constraints converge (a chain of N rods needs about N per 60 Hz frame to
-    /// stay within 1e-3 of its lengths) at the cost of one pass each.
+    /// (default 10). More substeps make long chains of stiff constraints converge, at the cost of one pass each: on the
+    /// hanging chain at 1 ms steps, 10 substeps hold 11 rods within 9e-6 of their length and 101 rods within 7e-4.
     /// </summary>
     public int Substeps
     {
