@@ -10,8 +10,9 @@ namespace ParticlePhysics.Constraints;
 /// </summary>
 /// <remarks>
 /// Each constraint, in index order, takes the smallest colour that none of the constraints already coloured at its
-/// particles has (Welsh-Powell without the sort: at most the largest number of constraints at one particle, plus one,
-/// times two). An anchored constraint (second end -1) touches one particle.
+/// particles has (greedy colouring of the line graph: with d the most constraints at one particle, each constraint
+/// meets at most 2 (d - 1) others, so at most 2 d - 1 colours). An anchored constraint (second end -1) touches one
+/// particle.
 /// </remarks>
 internal static class ConstraintColouring
 {

@@ -13,7 +13,7 @@ namespace ParticlePhysics.Constraints;
 /// <para>
 /// A spring of stiffness k, rest length L and axial damping c is the constraint C = |x_i - x_j| - L with compliance
 /// alpha = 1 / k and damping beta = c (its force -k C grad C - c (grad C . v) grad C). One XPBD iteration per substep
-/// with the multiplier reset (Macklin, Mueller and Chentanez 2016, eq. 26; "Small Steps", 2019):
+/// with the multiplier reset (Macklin, Mueller and Chentanez, "XPBD", 2016, with its damping; "Small Steps", 2019):
 /// dlambda = (-C - gamma grad C . (x - x0)) / ((1 + gamma) w + alpha / h^2) with gamma = alpha beta / h and
 /// w = w_i + w_j. Multiplied through by k h^2 it reads dlambda = -(k h^2 C + c h grad C . (x - x0)) / ((k h^2 + c h) w + 1),
 /// which stays finite for k = 0 (a pure damper) and tends to the rigid -C / w as k grows: stable at any stiffness.

@@ -16,7 +16,7 @@ namespace ParticlePhysics.Integrators;
 /// contacts); v = (x - x0) / h_s (a pinned particle keeps its own velocity exactly); then one velocity pass
 /// (restitution, friction). Derivation: one Gauss-Seidel iteration of the implicit Euler step on the constraints'
 /// compliant energy per substep, with the multipliers reset each substep, converges to the implicit solution as the
-/// substeps shrink (Small Steps, section 4), so the method is first order in h_s. Stability: a projection never adds
+/// substeps shrink ("Small Steps"), so the method is first order in h_s. Stability: a projection never adds
 /// energy and a stiff constraint becomes rigid rather than unstable, so any h is stable for the projected forces;
 /// the forces left to the prediction (drag, zero-rest-length springs without a projection, your own) keep
 /// semi-implicit Euler's limit h_s omega &lt; 2 for them.

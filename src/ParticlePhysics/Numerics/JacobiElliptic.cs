@@ -8,8 +8,8 @@ namespace ParticlePhysics.Numerics;
 /// </summary>
 /// <remarks>
 /// AGM: a0 = 1, b0 = sqrt(1 - k^2), c0 = k; a(n+1) = (a + b) / 2, b(n+1) = sqrt(a b), c(n+1) = (a - b) / 2, until c is
-/// below rounding (quadratic convergence: about 5 terms in double precision for k &lt; 0.9999). Then K = pi / (2 a_N),
-/// and (Abramowitz and Stegun 16.4.3) phi_N = 2^N a_N u, phi(n-1) = (phi_n + asin(c_n sin(phi_n) / a_n)) / 2,
+/// below rounding (the AGM converges quadratically). Then K = pi / (2 a_N),
+/// and (Abramowitz and Stegun, 16.4) phi_N = 2^N a_N u, phi(n-1) = (phi_n + asin(c_n sin(phi_n) / a_n)) / 2,
 /// sn = sin phi_0, cn = cos phi_0, dn = sqrt(cn^2 + k'^2 sn^2). The argument is first reduced modulo the real
 /// period 4 K, so that phi stays small and keeps its digits.
 /// </remarks>

@@ -132,7 +132,7 @@ public class XpbdTests
             }
         }
 
-        // Greedy colouring needs at most one more colour than twice the most springs at a particle (12 here).
+        // With d = 12 springs at the most crowded particle, at least d colours and at most 2 d - 1.
         Assert.InRange(projection.ColourCount, 12, 23);
 
         // Retuning keeps the batches; a new spring brings new ones.
