@@ -10,20 +10,29 @@ namespace ParticlePhysics;
 /// The course's state vector of N point masses: positions and velocities in one flat buffer of 6 N doubles,
 /// laid out [x0 y0 z0 x1 ... | vx0 vy0 vz0 vx1 ...], a mass per particle, a force accumulator, pinned particles,
 /// and a list of force generators that can change at any time. It is an <see cref="IOdeSystem"/>
-/// (dy/dt = [v | F / m]), an <see cref="ISecondOrderSystem"/> and an <see cref="ILinearizableSystem"/> (its forces'
-/// Jacobians, for implicit steps), so every integrator can advance it.
+/// (dy/dt = [v | F / m]), an <see cref="ISecondOrderSystem"/>, an <see cref="ILinearizableSystem"/> (its forces'
+/// Jacobians, for implicit steps) and an <see cref="IPositionBasedSystem"/> (accelerations and projections for xpbd),
+/// so every integrator can advance it.
 /// </summary>
 /// <remarks>
 /// Positions first, then velocities (rather than interleaved per particle) so that integrators that treat the two
 /// differently work on two contiguous halves. While particles are being added, the buffer keeps spare capacity in
 /// each half; it is compacted to exactly 6 N values at the first step, so building a large cloth stays linear.
-/// A pinned particle has infinite mass (inverse mass 0) and zero velocity: every integrator leaves it exactly
-/// where it is. Stepping allocates nothing once the system and its integrator have been used once.
+/// A pinned particle has infinite mass (inverse mass 0): no force changes its velocity, so every integrator moves it
+/// at exactly the velocity it has, zero (the default: it stays where it is) or the velocity the host gives it to
+/// drive it along a path (a kinematic particle, see <see cref="MoveKinematic"/>). Stepping allocates nothing once
+/// the system and its integrator have been used once.
 /// </remarks>
-public sealed class ParticleWorld : ILinearizableSystem
+public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
 {
     private readonly List<IForceGenerator> _forceGenerators = new();
     private readonly List<IConstraintSet> _constraintSets = new();
+
+    // The sets that add constraint forces at every evaluation (rods under the force-based integrators), and the
+    // generators that no set projects (what xpbd's predictions see), rebuilt when generators or sets change.
+    private readonly List<IConstraintForces> _constraintForces = new();
+    private readonly List<IForceGenerator> _unprojected = new();
+    private bool _unprojectedStale = true;
 
     // The implicit stepper's linearisation (ILinearizableSystem): the generators linearised at the last Linearize,
     // and the finite-difference wrappers of those that supply no Jacobian of their own, kept while they are added.
@@ -198,18 +207,37 @@ public sealed class ParticleWorld : ILinearizableSystem
         return new Vector3d(_state[o], _state[o + 1], _state[o + 2]);
     }
 
-    /// <summary>Sets the velocity of a free particle. A pinned particle's velocity is zero and stays zero.</summary>
+    /// <summary>
+    /// Sets the velocity of a particle. A pinned particle then moves at exactly this velocity, whatever acts on it (a
+    /// kinematic particle, an anchor the host moves), and springs, dampers and drag see it.
+    /// </summary>
     public void SetVelocity(int index, Vector3d velocity)
     {
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Finite(velocity, nameof(velocity));
-        if (_pinned[index] && velocity != Vector3d.Zero)
+        WriteVelocity(index, velocity);
+    }
+
+    /// <summary>
+    /// Drives a pinned particle along a path the host knows: gives it the velocity (target - x) / duration, so that it
+    /// reaches <paramref name="target"/> after <paramref name="duration"/> seconds of steps, and springs, dampers and
+    /// drag see the path's velocity (moving it with <see cref="SetPosition"/> alone would leave it at rest for them).
+    /// Call it once per frame with the anchor's next position.
+    /// </summary>
+    /// <exception cref="InvalidOperationException">The particle is not pinned (forces move a free particle).</exception>
+    public void MoveKinematic(int index, Vector3d target, double duration)
+    {
+        Guard.ParticleIndex(index, _count, nameof(index));
+        Guard.Finite(target, nameof(target));
+        Guard.PositiveFinite(duration, nameof(duration));
+        if (!_pinned[index])
         {
-            throw new ArgumentException(
-                $"Particle {index} is pinned: its velocity is zero and cannot be set to {velocity}; unpin it first.",
-                nameof(velocity));
+            throw new InvalidOperationException(
+                $"Particle {index} is not pinned: forces move it. Pin it to drive it along a path.");
         }
 
+        var velocity = (target - GetPosition(index)) * (1.0 / duration);
+        Guard.Finite(velocity, nameof(target));
         WriteVelocity(index, velocity);
     }
 
@@ -237,18 +265,29 @@ public sealed class ParticleWorld : ILinearizableSystem
     }
 
     /// <summary>
-    /// Pins a particle: it gets infinite mass and zero velocity, and no force or integrator moves it again
-    /// (only <see cref="SetPosition"/> does). Forces still see it, so springs pull their other ends toward it.
+    /// Pins a particle where it is: it gets infinite mass and zero velocity, and no force moves it again (only
+    /// <see cref="SetPosition"/>, <see cref="SetVelocity"/> and <see cref="MoveKinematic"/> do). Forces still see it,
+    /// so springs pull their other ends toward it.
     /// </summary>
-    public void Pin(int index)
+    public void Pin(int index) => Pin(index, Vector3d.Zero);
+
+    /// <summary>
+    /// Pins a particle moving at <paramref name="velocity"/>: no force changes that velocity, so it moves along a
+    /// straight line, and springs, dampers and drag see its velocity (a moving anchor).
+    /// </summary>
+    public void Pin(int index, Vector3d velocity)
     {
         Guard.ParticleIndex(index, _count, nameof(index));
+        Guard.Finite(velocity, nameof(velocity));
         _pinned[index] = true;
         _inverseMasses[index] = 0.0;
-        WriteVelocity(index, Vector3d.Zero);
+        WriteVelocity(index, velocity);
     }
 
-    /// <summary>Frees a pinned particle: it moves again under the forces, with its own mass, starting at rest.</summary>
+    /// <summary>
+    /// Frees a pinned particle: it moves again under the forces, with its own mass, keeping the velocity it had (a
+    /// cloth corner let go by a moving hand flies on with the hand's velocity).
+    /// </summary>
     public void Unpin(int index)
     {
         Guard.ParticleIndex(index, _count, nameof(index));
@@ -257,8 +296,8 @@ public sealed class ParticleWorld : ILinearizableSystem
     }
 
     /// <summary>
-    /// Replaces the whole state vector [positions | velocities]. The values are checked first (all finite, pinned
-    /// particles at zero velocity): a rejected call changes nothing.
+    /// Replaces the whole state vector [positions | velocities]. The values are checked first (all finite): a rejected
+    /// call changes nothing. A pinned particle may have a velocity: it then moves at it.
     /// </summary>
     public void SetState(ReadOnlySpan<double> state)
     {
@@ -275,16 +314,6 @@ public sealed class ParticleWorld : ILinearizableSystem
             throw new ArgumentException(
                 $"state must be finite; value {bad} (particle {(bad % (3 * _count)) / 3}) is {Guard.Format(values[bad])}.",
                 nameof(state));
-        }
-
-        for (var i = 0; i < _count; i++)
-        {
-            var o = (3 * _count) + (3 * i);
-            if (_pinned[i] && (values[o] != 0.0 || values[o + 1] != 0.0 || values[o + 2] != 0.0))
-            {
-                throw new ArgumentException(
-                    $"Particle {i} is pinned, so its velocity in state must be zero.", nameof(state));
-            }
         }
 
         Compact();
@@ -309,6 +338,7 @@ public sealed class ParticleWorld : ILinearizableSystem
         }
 
         _forceGenerators.Add(generator);
+        _unprojectedStale = true;
     }
 
     /// <summary>Removes a force generator; returns false when it was not in the system.</summary>
@@ -321,6 +351,7 @@ public sealed class ParticleWorld : ILinearizableSystem
 
         _ = _finiteDifference.Remove(generator);
         _linearized.Clear(); // a later product must not reach a removed generator; the next Linearize rebuilds it
+        _unprojectedStale = true;
         return true;
     }
 
@@ -335,16 +366,38 @@ public sealed class ParticleWorld : ILinearizableSystem
         }
 
         _constraintSets.Add(constraints);
+        if (constraints is IConstraintForces forces)
+        {
+            _constraintForces.Add(forces);
+        }
+
+        _unprojectedStale = true;
     }
 
     /// <summary>Removes a constraint set; returns false when it was not in the world.</summary>
-    public bool RemoveConstraints(IConstraintSet constraints) => _constraintSets.Remove(constraints);
+    public bool RemoveConstraints(IConstraintSet constraints)
+    {
+        if (!_constraintSets.Remove(constraints))
+        {
+            return false;
+        }
+
+        if (constraints is IConstraintForces forces)
+        {
+            _ = _constraintForces.Remove(forces);
+        }
+
+        _unprojectedStale = true;
+        return true;
+    }
 
     /// <summary>
     /// Advances the system by one step of <paramref name="dt"/> seconds with <paramref name="integrator"/>, in stages:
     /// the integrator advances the state under the forces into a scratch buffer; the constraint stage corrects it
-    /// (<see cref="IConstraintSet.Resolve"/>, every set in order); the result is committed only if it is finite and
-    /// within <see cref="DivergenceLimit"/>. If any stage throws, the world is left exactly as it was.
+    /// (<see cref="IConstraintSet.Resolve"/>, every set in order), except after a position-based integrator
+    /// (<see cref="IPositionBasedIntegrator"/>), which has projected every set in its substeps; the result is committed
+    /// only if it is finite and within <see cref="DivergenceLimit"/>. If any stage throws, the world is left exactly as
+    /// it was.
     /// </summary>
     /// <exception cref="ArgumentOutOfRangeException"><paramref name="dt"/> is not a positive finite number.</exception>
     /// <exception cref="SimulationDivergedException">
@@ -364,7 +417,11 @@ public sealed class ParticleWorld : ILinearizableSystem
 
         var current = _state.AsSpan(0, dimension);
         integrator.Step(this, _time, current, _next, dt);
-        ResolveConstraints(current, dt);
+        if (integrator is not IPositionBasedIntegrator)
+        {
+            ResolveConstraints(current, dt);
+        }
+
         var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
         if (bad >= 0)
         {
@@ -439,8 +496,10 @@ public sealed class ParticleWorld : ILinearizableSystem
     }
 
     /// <summary>
-    /// Clears the force accumulator and lets every generator add into it, for the given positions and velocities.
-    /// Returns the accumulator (3 values per particle), valid until the next evaluation.
+    /// Clears the force accumulator and lets every generator add into it, for the given positions and velocities, then
+    /// every constraint set that acts through forces (<see cref="IConstraintForces"/>: rods, taut cables) adds its
+    /// constraint forces for those applied forces. Returns the accumulator (3 values per particle), valid until the next
+    /// evaluation.
     /// </summary>
     public ReadOnlySpan<double> AccumulateForces(double time, ReadOnlySpan<double> positions, ReadOnlySpan<double> velocities)
     {
@@ -453,7 +512,113 @@ public sealed class ParticleWorld : ILinearizableSystem
             _forceGenerators[g].AddForces(in view, forces);
         }
 
+        for (var c = 0; c < _constraintForces.Count; c++)
+        {
+            _constraintForces[c].AddConstraintForces(in view, forces);
+        }
+
         return forces;
+    }
+
+    /// <inheritdoc />
+    void IPositionBasedSystem.ComputeUnprojectedAccelerations(
+        double time, ReadOnlySpan<double> positions, ReadOnlySpan<double> velocities, Span<double> accelerations)
+    {
+        var n = 3 * _count;
+        if (positions.Length != n || velocities.Length != n || accelerations.Length != n)
+        {
+            throw new ArgumentException($"positions, velocities and accelerations must have {n} values each.");
+        }
+
+        if (_unprojectedStale)
+        {
+            CollectUnprojected();
+        }
+
+        var forces = _forces.AsSpan(0, n);
+        forces.Clear();
+        var view = new ParticleState(time, positions, velocities, Masses, InverseMasses, Runner);
+        for (var g = 0; g < _unprojected.Count; g++)
+        {
+            _unprojected[g].AddForces(in view, forces);
+        }
+
+        for (var i = 0; i < _count; i++)
+        {
+            var w = _inverseMasses[i];
+            var o = 3 * i;
+            accelerations[o] = forces[o] * w;
+            accelerations[o + 1] = forces[o + 1] * w;
+            accelerations[o + 2] = forces[o + 2] * w;
+        }
+    }
+
+    /// <inheritdoc />
+    void IPositionBasedSystem.ProjectConstraints(
+        double time,
+        double dt,
+        ReadOnlySpan<double> startPositions,
+        ReadOnlySpan<double> startVelocities,
+        Span<double> positions,
+        Span<double> velocities)
+    {
+        var context = SubstepContext(time, dt, startPositions, startVelocities, positions, velocities);
+        for (var c = 0; c < _constraintSets.Count; c++)
+        {
+            _constraintSets[c].Project(in context);
+        }
+    }
+
+    /// <inheritdoc />
+    void IPositionBasedSystem.SolveConstraintVelocities(
+        double time,
+        double dt,
+        ReadOnlySpan<double> startPositions,
+        ReadOnlySpan<double> startVelocities,
+        Span<double> positions,
+        Span<double> velocities)
+    {
+        var context = SubstepContext(time, dt, startPositions, startVelocities, positions, velocities);
+        for (var c = 0; c < _constraintSets.Count; c++)
+        {
+            _constraintSets[c].SolveVelocities(in context);
+        }
+    }
+
+    private ConstraintContext SubstepContext(
+        double time,
+        double dt,
+        ReadOnlySpan<double> startPositions,
+        ReadOnlySpan<double> startVelocities,
+        Span<double> positions,
+        Span<double> velocities)
+    {
+        Guard.PositiveFinite(dt, nameof(dt));
+        return new ConstraintContext(
+            time, dt, startPositions, startVelocities, positions, velocities, Masses, InverseMasses);
+    }
+
+    /// <summary>The generators that no constraint set projects (<see cref="IForceProjection"/>), in their order.</summary>
+    private void CollectUnprojected()
+    {
+        _unprojected.Clear();
+        for (var g = 0; g < _forceGenerators.Count; g++)
+        {
+            var generator = _forceGenerators[g];
+            var projected = false;
+            for (var c = 0; c < _constraintSets.Count && !projected; c++)
+            {
+                projected = _constraintSets[c] is IForceProjection projection
+                    && ReferenceEquals(projection.Force, generator);
+            }
+
+            if (!projected)
+            {
+                _unprojected.Add(generator);
+            }
+        }
+
+        _unprojectedStale = false;
     }
 
     /// <inheritdoc />

@@ -13,6 +13,7 @@ using System.Globalization;
 using System.IO;
 using System.Runtime.InteropServices;
 using ParticlePhysics.Cloth;
+using ParticlePhysics.Constraints;
 using ParticlePhysics.Driver;
 using ParticlePhysics.Integrators;
 using ParticlePhysics.Parallel;
@@ -48,6 +49,7 @@ namespace ParticlePhysics.RuntimeComparison
                 Snapshots("rk45");
                 ParallelRunner();
                 UnitySample();
+                Constraints();
             }
 
             if (timings)
@@ -78,6 +80,65 @@ namespace ParticlePhysics.RuntimeComparison
                 hash.Add(world.State);
                 AddIntegratorState(hash, integrator);
                 Print("integrator/" + name, hash);
+            }
+        }
+
+        // Rods and cables (issue 12): the pendulum and the hanging chain (band solve) under every integrator, a net of rods
+        // (conjugate gradients) under rk4 and xpbd, and a cable hanging from an anchor that a kinematic body drives.
+        private static void Constraints()
+        {
+            foreach (var name in IntegratorCatalog.Names)
+            {
+                var pendulum = new PendulumScenario { Angle = 120 }.Build();
+                var chain = new HangingChainScenario { Particles = 21 }.Build();
+                var integrator = IntegratorCatalog.Create(name);
+                Run(pendulum, integrator, 0.002, 300);
+                Run(chain, IntegratorCatalog.Create(name), 0.002, 300);
+                Print("pendulum/" + name, StateHash(pendulum, integrator));
+                var hash = new BitHash();
+                hash.Add(chain.State);
+                Print("hanging-chain/" + name, hash);
+            }
+
+            foreach (var name in new[] { "rk4", "xpbd" })
+            {
+                var net = new ParticleWorld();
+                for (var i = 0; i < 144; i++)
+                {
+                    net.AddParticle(new Vector3d(i % 12 * 0.05, 0, i / 12 * 0.05), 0.01);
+                }
+
+                net.Pin(0);
+                net.AddForce(new Forces.Gravity());
+                var rods = new RodNetwork(net);
+                for (var i = 0; i < 144; i++)
+                {
+                    if (i % 12 + 1 < 12)
+                    {
+                        rods.AddRod(i, i + 1, 0.05);
+                    }
+
+                    if (i + 12 < 144)
+                    {
+                        rods.AddRod(i, i + 12, 0.05);
+                    }
+                }
+
+                net.AddConstraints(rods);
+                var body = new KinematicBody(net, Vector3d.Zero, Rotation3d.Identity);
+                body.Attach(0);
+                var cables = new RodNetwork(net);
+                var weight = net.AddParticle(new Vector3d(0.3, -0.2, 0.1), 0.2);
+                cables.AddCable(0, weight, 0.5);
+                net.AddConstraints(cables);
+                var integrator = IntegratorCatalog.Create(name);
+                for (var frame = 1; frame <= 30; frame++)
+                {
+                    body.MoveTo(new Vector3d(0.2 * frame / 60.0, 0, 0), Rotation3d.FromAxisAngle(new Vector3d(0, 1, 0), 0.3 * frame / 60.0), 1.0 / 60);
+                    Run(net, integrator, 1.0 / 600, 10);
+                }
+
+                Print("rod-net/" + name, StateHash(net, integrator));
             }
         }
 

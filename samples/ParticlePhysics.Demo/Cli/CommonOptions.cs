@@ -19,6 +19,7 @@ internal sealed class CommonOptions
         Format = Options.Choice("--format", "Output: aligned table for people, csv or json for programs", OutputFormat.Default, OutputFormat.Names.ToArray());
         Plot = PlotOption("A chart of the run: the trajectory against the exact solution, or snapshots of the cloth mesh");
         Tolerance = Options.Number("--tolerance", "rk45's error bound per internal step (relative to 1 + |y|)", string.Empty, 1e-8, NumberRule.Positive);
+        Substeps = scenario.IsPlainOde ? null : SubstepsOption();
     }
 
     public Option<string> Integrator { get; }
@@ -35,7 +36,21 @@ internal sealed class CommonOptions
 
     public Option<double> Tolerance { get; }
 
-    public IEnumerable<Option> All => new Option[] { Integrator, Dt, Duration, Every, Format, Plot, Tolerance };
+    /// <summary><c>--substeps</c>, for particle scenarios only (xpbd needs positions and velocities).</summary>
+    public Option<int?>? Substeps { get; }
+
+    public IEnumerable<Option> All =>
+        Substeps is null
+            ? new Option[] { Integrator, Dt, Duration, Every, Format, Plot, Tolerance }
+            : new Option[] { Integrator, Dt, Duration, Every, Format, Plot, Tolerance, Substeps };
+
+    /// <summary><c>--substeps N</c>: xpbd's substeps per step, a whole number from 1 to 1000 (default 10).</summary>
+    public static Option<int?> SubstepsOption() =>
+        Options.Count("--substeps", "xpbd's substeps per step, one projection pass each", 1, Xpbd.DefaultSubsteps, Xpbd.MaxSubsteps);
+
+    /// <summary>The parsed <c>--substeps</c>, or the default.</summary>
+    public int SubstepsValue(ParseResult parse) =>
+        Substeps is null ? Xpbd.DefaultSubsteps : parse.GetValue(Substeps) ?? Xpbd.DefaultSubsteps;
 
     /// <summary><c>--plot FILE.svg</c>.</summary>
     public static Option<string?> PlotOption(string description) => new("--plot") { Description = description, HelpName = "FILE.svg" };

@@ -19,13 +19,15 @@ internal static class DemoCommandLine
         new MassSpringDamperDefinition(),
         new TwoMassChainDefinition(),
         new ClothDefinition(),
+        new PendulumDefinition(),
+        new HangingChainDefinition(),
         new ScalarOdeDefinition(),
     };
 
     public static RootCommand Build(DemoContext context)
     {
         var root = new RootCommand(
-            "ParticlePhysics demo: the course's scenarios (free fall, mass-spring-damper, two-mass chain, cloth, scalar ODE) "
+            "ParticlePhysics demo: the course's scenarios (free fall, mass-spring-damper, two-mass chain, cloth, pendulum, hanging chain, scalar ODE) "
             + "with any integrator, printed as a table, csv or json, optionally plotted as SVG. "
             + "With no arguments, runs every scenario briefly and prints one summary table. Units are SI.");
         foreach (var scenario in Scenarios())

@@ -1,5 +1,6 @@
 using System.IO;
 using ParticlePhysics.Demo.Running;
+using ParticlePhysics.Integrators;
 
 namespace ParticlePhysics.Demo.Output;
 
@@ -40,6 +41,11 @@ internal sealed class JsonRunWriter : IRunWriter
         if (plan.Integrator == "rk45")
         {
             o.WriteLine($"  \"tolerance\": {Numbers.Json(plan.Tolerance)},");
+        }
+
+        if (IntegratorCatalog.IsPositionBased(plan.Integrator))
+        {
+            o.WriteLine($"  \"substeps\": {Numbers.Json(plan.Substeps)},");
         }
 
         o.Write("  \"parameters\": {");

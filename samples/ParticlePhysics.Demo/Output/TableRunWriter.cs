@@ -1,6 +1,7 @@
 using System.IO;
 using System.Linq;
 using ParticlePhysics.Demo.Running;
+using ParticlePhysics.Integrators;
 
 namespace ParticlePhysics.Demo.Output;
 
@@ -29,7 +30,7 @@ internal sealed class TableRunWriter : IRunWriter
         _indices = setup.TableColumns.Select(c => columns.IndexOf(c)).ToArray();
         _widths = setup.TableColumns.Select(c => System.Math.Max(MinimumWidth, c.Length)).ToArray();
         _output.WriteLine(
-            $"{setup.Name}: {plan.Integrator}, dt = {Numbers.Brief(plan.Dt)} s, {plan.Steps} steps to t = {Numbers.Brief(plan.EndTime)} s, {(plan.Every == 1 ? "a row every step" : $"a row every {plan.Every} steps")}");
+            $"{setup.Name}: {plan.Integrator}{(IntegratorCatalog.IsPositionBased(plan.Integrator) ? $" ({plan.Substeps} substeps)" : string.Empty)}, dt = {Numbers.Brief(plan.Dt)} s, {plan.Steps} steps to t = {Numbers.Brief(plan.EndTime)} s, {(plan.Every == 1 ? "a row every step" : $"a row every {plan.Every} steps")}");
         _output.WriteLine(string.Join(" ", setup.TableColumns.Select((c, i) => c.PadLeft(_widths[i]))));
     }
 

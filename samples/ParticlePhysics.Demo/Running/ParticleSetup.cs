@@ -8,7 +8,8 @@ namespace ParticlePhysics.Demo.Running;
 /// <summary>
 /// The row layout of a particle scenario: <c>t</c>, then <c>x{i},y{i},z{i},vx{i},vy{i},vz{i}</c> per particle, then
 /// the exact values of the vertical components (<c>y{i}_exact</c>, <c>vy{i}_exact</c>) and <c>error</c> when there
-/// is an exact solution, then <c>energy</c> (kinetic + potential, J) and, for meshes, <c>min_y</c> and <c>max_speed</c>.
+/// is an exact solution, then <c>energy</c> (kinetic + potential, J), for meshes <c>min_y</c> and <c>max_speed</c>,
+/// then the scenario's own extra columns (a pendulum's angle and period, a chain's distance from its catenary).
 /// </summary>
 internal class ParticleSetup : ScenarioSetup
 {
@@ -16,6 +17,8 @@ internal class ParticleSetup : ScenarioSetup
     private readonly int _count;
     private readonly bool _meshColumns;
     private readonly string[] _columns;
+    private readonly IReadOnlyList<ExtraColumn> _extras;
+    private readonly Func<IStepObserver>? _observer;
     private double[] _exact = Array.Empty<double>();
 
     /// <param name="name">The scenario's name.</param>
@@ -23,10 +26,21 @@ internal class ParticleSetup : ScenarioSetup
     /// <param name="count">The number of particles the system has.</param>
     /// <param name="exact">The exact solution, or null.</param>
     /// <param name="meshColumns">Adds <c>min_y</c> and <c>max_speed</c> (for the cloth).</param>
-    public ParticleSetup(string name, Func<ParticleWorld> build, int count, IExactSolution? exact, bool meshColumns = false)
+    /// <param name="extras">Columns of the scenario's own, after all the others.</param>
+    /// <param name="observer">Makes, for each run, what watches every step (a pendulum's period), or null.</param>
+    public ParticleSetup(
+        string name,
+        Func<ParticleWorld> build,
+        int count,
+        IExactSolution? exact,
+        bool meshColumns = false,
+        IReadOnlyList<ExtraColumn>? extras = null,
+        Func<IStepObserver>? observer = null)
         : base(name, exact)
     {
         _build = build;
+        _extras = extras ?? Array.Empty<ExtraColumn>();
+        _observer = observer;
         _meshColumns = meshColumns;
         _count = count;
         var columns = new List<string> { "t" };
@@ -56,6 +70,11 @@ internal class ParticleSetup : ScenarioSetup
             columns.Add("max_speed");
         }
 
+        foreach (var extra in _extras)
+        {
+            columns.Add(extra.Name);
+        }
+
         _columns = columns.ToArray();
     }
 
@@ -79,7 +98,7 @@ internal class ParticleSetup : ScenarioSetup
     /// <summary>The number of particles.</summary>
     public int ParticleCount => _count;
 
-    public override ISimulation CreateSimulation() => new ParticleSimulation(_build());
+    public override ISimulation CreateSimulation() => new ParticleSimulation(_build(), _observer?.Invoke());
 
     protected override void FillExact(double time, Span<double> row)
     {
@@ -100,7 +119,8 @@ internal class ParticleSetup : ScenarioSetup
 
     public override void FillRow(ISimulation simulation, double time, Span<double> row)
     {
-        var system = ((ParticleSimulation)simulation).System;
+        var particles = (ParticleSimulation)simulation;
+        var system = particles.System;
         var positions = system.Positions;
         var velocities = system.Velocities;
         var k = 0;
@@ -148,7 +168,12 @@ internal class ParticleSetup : ScenarioSetup
             }
 
             row[k++] = minY;
-            row[k] = maxSpeed;
+            row[k++] = maxSpeed;
+        }
+
+        foreach (var extra in _extras)
+        {
+            row[k++] = extra.Value(particles);
         }
     }
 

@@ -21,7 +21,7 @@ internal static class Runner
         ScenarioSetup setup, RunPlan plan, Action<double[]>? onRow, ProgressReporter? progress = null, IRunPlot? tap = null)
     {
         var simulation = setup.CreateSimulation();
-        var integrator = IntegratorCatalog.Create(plan.Integrator, plan.Tolerance);
+        var integrator = IntegratorCatalog.Create(plan.Integrator, plan.Tolerance, plan.Substeps);
         var row = new double[setup.Columns.Count];
         var lastRowStep = -1;
         void Emit(int step)

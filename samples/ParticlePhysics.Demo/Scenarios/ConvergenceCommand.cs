@@ -42,9 +42,15 @@ internal static class ConvergenceCommand
         var format = Options.Choice("--format", "Output: aligned table for people, csv or json for programs", OutputFormat.Default, OutputFormat.Names.ToArray());
         var plot = CommonOptions.PlotOption("A chart of the error against dt on log-log axes");
         var tolerance = Options.Number("--tolerance", "rk45's error bound per internal step, when --integrator rk45", string.Empty, 1e-8, NumberRule.Positive);
+        var substeps = scenario.IsPlainOde ? null : CommonOptions.SubstepsOption();
         foreach (var option in scenario.PhysicsOptions.Concat(new Option[] { integrator, dt, duration, levels, format, plot, tolerance }))
         {
             command.Add(option);
+        }
+
+        if (substeps is not null)
+        {
+            command.Add(substeps);
         }
 
         command.SetAction(parse =>
@@ -59,7 +65,14 @@ internal static class ConvergenceCommand
             var names = parse.GetValue(integrator) is { } one
                 ? new[] { one }
                 : scenario.Integrators.Where(n => !IntegratorCatalog.IsAdaptive(n)).ToArray();
-            var study = Run(scenario.Configure(parse), names, parse.GetValue(dt), parse.GetValue(duration), count, parse.GetValue(tolerance));
+            var setup = scenario.Configure(parse);
+            if (setup.Exact is null)
+            {
+                throw new UsageException($"convergence needs an exact solution, and {scenario.Name} has one only {scenario.ExactSolutionCondition}.");
+            }
+
+            var substepCount = substeps is null ? Xpbd.DefaultSubsteps : parse.GetValue(substeps) ?? Xpbd.DefaultSubsteps;
+            var study = Run(setup, names, parse.GetValue(dt), parse.GetValue(duration), count, parse.GetValue(tolerance), substepCount);
             ConvergenceOutput.Write(parse.GetValue(format)!, context.Output, study);
             if (parse.GetValue(plot) is { } path)
             {
@@ -78,7 +91,8 @@ internal static class ConvergenceCommand
     }
 
     /// <summary>Runs every integrator at every level; the end time is the same for all (steps double as dt halves).</summary>
-    public static ConvergenceStudy Run(ScenarioSetup setup, IReadOnlyList<string> integrators, double dt, double duration, int levels, double tolerance)
+    public static ConvergenceStudy Run(
+        ScenarioSetup setup, IReadOnlyList<string> integrators, double dt, double duration, int levels, double tolerance, int substeps = Xpbd.DefaultSubsteps)
     {
         var steps = RunPlan.StepsFor(duration, dt);
         if ((long)steps << (levels - 1) > int.MaxValue)
@@ -92,7 +106,7 @@ internal static class ConvergenceCommand
             double? previous = null;
             for (var level = 0; level < levels; level++)
             {
-                var plan = new RunPlan(name, dt / (1 << level), steps << level, steps << level, tolerance);
+                var plan = new RunPlan(name, dt / (1 << level), steps << level, steps << level, tolerance, substeps);
                 var outcome = Runner.Run(setup, plan, null);
                 var error = outcome.Diverged is null ? outcome.FinalError ?? double.NaN : double.NaN;
                 double? order = previous is > 0 && error > 0 ? Math.Log2(previous.Value / error) : null;

@@ -40,7 +40,8 @@ internal static class ScenarioCommand
             dt,
             steps,
             parse.GetValue(options.Every) ?? RunPlan.DefaultEvery(steps),
-            parse.GetValue(options.Tolerance));
+            parse.GetValue(options.Tolerance),
+            options.SubstepsValue(parse));
         var plotPath = parse.GetValue(options.Plot);
         if (plotPath is not null)
         {

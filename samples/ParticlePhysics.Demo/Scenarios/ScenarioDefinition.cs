@@ -28,6 +28,9 @@ internal abstract class ScenarioDefinition
     /// <summary>True when the scenario has an exact solution (every one but the cloth).</summary>
     public virtual bool HasExactSolution => true;
 
+    /// <summary>When the exact solution holds, for the error a convergence study gives without one ("without drag (--drag 0)").</summary>
+    public virtual string ExactSolutionCondition => "with other options";
+
     /// <summary>True for a plain first-order ODE, which refuses the integrators that need positions and velocities.</summary>
     public virtual bool IsPlainOde => false;
 

@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using ParticlePhysics.Constraints;
 using ParticlePhysics.Forces;
 
 namespace ParticlePhysics.Cloth;
@@ -13,7 +14,8 @@ namespace ParticlePhysics.Cloth;
 /// Springs, in the order they are added (for each particle in index order): structural (row, col)-(row, col + 1) and
 /// (row, col)-(row + 1, col), rest length r; shear (row, col)-(row + 1, col + 1) and (row, col + 1)-(row + 1, col),
 /// rest length r sqrt(2); bend (row, col)-(row, col + 2) and (row, col)-(row + 2, col), rest length 2 r. Each family
-/// can be switched off or given its own stiffness and damping. Then linear drag and gravity, in that order.
+/// can be switched off or given its own stiffness and damping. Then linear drag and gravity, in that order, and a
+/// <see cref="SpringProjection"/> of the springs, which projects them under xpbd (and does nothing otherwise).
 /// </remarks>
 public sealed class ClothBuilder
 {
@@ -201,7 +203,9 @@ public sealed class ClothBuilder
         system.AddForce(springs);
         system.AddForce(drag);
         system.AddForce(gravity);
-        return new ParticleCloth(system, _rows, _columns, 0, springs, drag, gravity);
+        var projection = new SpringProjection(springs);
+        system.AddConstraints(projection);
+        return new ParticleCloth(system, _rows, _columns, 0, springs, drag, gravity, projection);
     }
 
     /// <summary>
@@ -224,7 +228,9 @@ public sealed class ClothBuilder
         var drag = new LinearDrag(_drag, system, particles);
         system.AddForce(springs);
         system.AddForce(drag);
-        return new ParticleCloth(system, _rows, _columns, first, springs, drag, null);
+        var projection = new SpringProjection(springs);
+        system.AddConstraints(projection);
+        return new ParticleCloth(system, _rows, _columns, first, springs, drag, null, projection);
     }
 
     private static void CheckSide(int value, string name)

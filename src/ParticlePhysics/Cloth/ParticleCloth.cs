@@ -1,5 +1,6 @@
 using System;
 using System.Numerics;
+using ParticlePhysics.Constraints;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Numerics;
 
@@ -12,8 +13,16 @@ namespace ParticlePhysics.Cloth;
 public sealed class ParticleCloth
 {
     internal ParticleCloth(
-        ParticleWorld system, int rows, int columns, int firstParticle, SpringNetwork springs, LinearDrag drag, Gravity? gravity)
+        ParticleWorld system,
+        int rows,
+        int columns,
+        int firstParticle,
+        SpringNetwork springs,
+        LinearDrag drag,
+        Gravity? gravity,
+        SpringProjection projection)
     {
+        Projection = projection;
         System = system;
         Rows = rows;
         Columns = columns;
@@ -41,6 +50,9 @@ public sealed class ParticleCloth
 
     /// <summary>The cloth's springs (structural, shear and bend, in the order the builder documents).</summary>
     public SpringNetwork Springs { get; }
+
+    /// <summary>The springs as xpbd distance constraints (in the world's constraint sets): how xpbd steps the cloth.</summary>
+    public SpringProjection Projection { get; }
 
     /// <summary>The linear drag on the cloth's particles.</summary>
     public LinearDrag Drag { get; }

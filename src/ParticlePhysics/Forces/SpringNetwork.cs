@@ -18,7 +18,7 @@ namespace ParticlePhysics.Forces;
 /// Choi and Ko 2002); the position derivative of the damping term, which is not symmetric and vanishes when the
 /// ends move together, is left out. Each linearised spring is stored as u and two scalars, s I + t u u^T.
 /// </remarks>
-public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundForce, IForceJacobian
+public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundForce, IForceJacobian, ISpringElements
 {
     // Pair parameters: k, L, c. Anchored parameters: ax, ay, az, k, L, c.
     private const int PairStride = 3;
@@ -35,6 +35,8 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     // Parallel evaluation: below this many springs, waking other threads costs more than it saves.
     private const int ParallelThreshold = 4096;
     private ParallelSpringForces? _parallel;
+    private int _topologyVersion;
+    private int _parameterVersion;
 
     /// <summary>An empty network for the particles of <paramref name="system"/>.</summary>
     public SpringNetwork(ParticleWorld system)
@@ -51,6 +53,30 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
 
     ParticleWorld? IBoundForce.System => _system;
 
+    /// <inheritdoc />
+    public int TopologyVersion => _topologyVersion;
+
+    /// <inheritdoc />
+    public int ParameterVersion => _parameterVersion;
+
+    /// <inheritdoc />
+    int ISpringElements.PairCount => _pairs.Count;
+
+    /// <inheritdoc />
+    public void CopyPairs(Span<int> first, Span<int> second, Span<double> parameters)
+    {
+        _pairs.First.AsSpan(0, _pairs.Count).CopyTo(first);
+        _pairs.Second.AsSpan(0, _pairs.Count).CopyTo(second);
+        _pairs.Parameters.AsSpan(0, PairStride * _pairs.Count).CopyTo(parameters);
+    }
+
+    /// <inheritdoc />
+    public void CopyAnchored(Span<int> particle, Span<double> parameters)
+    {
+        _anchored.First.AsSpan(0, _anchored.Count).CopyTo(particle);
+        _anchored.Parameters.AsSpan(0, AnchoredStride * _anchored.Count).CopyTo(parameters);
+    }
+
     /// <summary>Adds a spring between two different existing particles.</summary>
     /// <param name="first">One end (i).</param>
     /// <param name="second">The other end (j).</param>
@@ -65,6 +91,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         Guard.DistinctParticles(first, second, nameof(second));
         CheckParameters(stiffness, restLength, damping);
         Span<double> p = stackalloc double[] { stiffness, restLength, damping };
+        _topologyVersion++;
         return _pairs.Add(first, second, p);
     }
 
@@ -81,6 +108,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         Guard.Finite(anchor, nameof(anchor));
         CheckParameters(stiffness, restLength, damping);
         Span<double> p = stackalloc double[] { anchor.X, anchor.Y, anchor.Z, stiffness, restLength, damping };
+        _topologyVersion++;
         return _anchored.Add(particle, -1, p);
     }
 
@@ -90,6 +118,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         _pairs.CheckIndex(spring, nameof(spring));
         Guard.NonNegativeFinite(stiffness, nameof(stiffness));
         _pairs.Parameters[PairStride * spring] = stiffness;
+        _parameterVersion++;
     }
 
     /// <summary>Changes the axial damping of a particle-particle spring (a finite number &gt;= 0, in N s/m).</summary>
@@ -98,6 +127,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         _pairs.CheckIndex(spring, nameof(spring));
         Guard.NonNegativeFinite(damping, nameof(damping));
         _pairs.Parameters[(PairStride * spring) + 2] = damping;
+        _parameterVersion++;
     }
 
     /// <summary>The two particles joined by a particle-particle spring.</summary>

@@ -9,13 +9,15 @@ namespace ParticlePhysics.Forces;
 /// (which makes the mass-spring-damper exactly solvable). Potential energy: k |x_i - x_j|^2 / 2 per spring.
 /// Jacobian: df_i/dx_i = -k I, df_i/dx_j = k I (constant, so implicit Euler is exact backward Euler for it).
 /// </summary>
-public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoundForce, IForceJacobian
+public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoundForce, IForceJacobian, ISpringElements
 {
     // Pair parameters: k. Anchored parameters: ax, ay, az, k.
     private readonly ForceElements _pairs = new(1);
     private readonly ForceElements _anchored = new(4);
     private readonly ParticleWorld _system;
     private double _positionScale;
+    private int _topologyVersion;
+    private int _parameterVersion;
 
     /// <summary>An empty set of springs for the particles of <paramref name="system"/>.</summary>
     public ZeroLengthSprings(ParticleWorld system)
@@ -32,6 +34,42 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
 
     ParticleWorld? IBoundForce.System => _system;
 
+    /// <inheritdoc />
+    public int TopologyVersion => _topologyVersion;
+
+    /// <inheritdoc />
+    public int ParameterVersion => _parameterVersion;
+
+    /// <inheritdoc />
+    int ISpringElements.PairCount => _pairs.Count;
+
+    /// <inheritdoc />
+    /// <remarks>Each spring reads as (k, 0, 0): rest length 0 and no damping.</remarks>
+    public void CopyPairs(Span<int> first, Span<int> second, Span<double> parameters)
+    {
+        _pairs.First.AsSpan(0, _pairs.Count).CopyTo(first);
+        _pairs.Second.AsSpan(0, _pairs.Count).CopyTo(second);
+        for (var s = 0; s < _pairs.Count; s++)
+        {
+            parameters[3 * s] = _pairs.Parameters[s];
+            parameters[(3 * s) + 1] = 0.0;
+            parameters[(3 * s) + 2] = 0.0;
+        }
+    }
+
+    /// <inheritdoc />
+    /// <remarks>Each spring reads as (ax, ay, az, k, 0, 0): rest length 0 and no damping.</remarks>
+    public void CopyAnchored(Span<int> particle, Span<double> parameters)
+    {
+        _anchored.First.AsSpan(0, _anchored.Count).CopyTo(particle);
+        for (var s = 0; s < _anchored.Count; s++)
+        {
+            _anchored.Parameters.AsSpan(4 * s, 4).CopyTo(parameters.Slice(6 * s, 4));
+            parameters[(6 * s) + 4] = 0.0;
+            parameters[(6 * s) + 5] = 0.0;
+        }
+    }
+
     /// <summary>Adds a spring between two different existing particles.</summary>
     /// <param name="first">One end.</param>
     /// <param name="second">The other end.</param>
@@ -44,6 +82,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
         Guard.DistinctParticles(first, second, nameof(second));
         Guard.NonNegativeFinite(stiffness, nameof(stiffness));
         Span<double> p = stackalloc double[] { stiffness };
+        _topologyVersion++;
         return _pairs.Add(first, second, p);
     }
 
@@ -58,6 +97,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
         Guard.Finite(anchor, nameof(anchor));
         Guard.NonNegativeFinite(stiffness, nameof(stiffness));
         Span<double> p = stackalloc double[] { anchor.X, anchor.Y, anchor.Z, stiffness };
+        _topologyVersion++;
         return _anchored.Add(particle, -1, p);
     }
 
@@ -67,6 +107,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
         _pairs.CheckIndex(spring, nameof(spring));
         Guard.NonNegativeFinite(stiffness, nameof(stiffness));
         _pairs.Parameters[spring] = stiffness;
+        _parameterVersion++;
     }
 
     /// <summary>Moves the anchor of an anchored spring (to attach a particle to a point that the host moves).</summary>
@@ -77,6 +118,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
         _anchored.Parameters[4 * spring] = anchor.X;
         _anchored.Parameters[(4 * spring) + 1] = anchor.Y;
         _anchored.Parameters[(4 * spring) + 2] = anchor.Z;
+        _parameterVersion++;
     }
 
     /// <inheritdoc />

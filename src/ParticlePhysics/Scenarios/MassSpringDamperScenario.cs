@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Constraints;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Numerics;
 
@@ -50,7 +51,7 @@ public sealed class MassSpringDamperScenario : IExactSolution
     /// <summary>The damping ratio zeta = c / (2 sqrt(k m)): below 1 under-damped, 1 critical, above 1 over-damped.</summary>
     public double DampingRatio => _damping / (2 * Math.Sqrt(_stiffness * _mass));
 
-    /// <summary>Builds the particle system: the particle, its anchored spring, drag and gravity.</summary>
+    /// <summary>Builds the particle system: the particle, its anchored spring, drag and gravity (and the spring's projection for xpbd).</summary>
     public ParticleWorld Build()
     {
         var system = new ParticleWorld(1);
@@ -60,6 +61,7 @@ public sealed class MassSpringDamperScenario : IExactSolution
         system.AddForce(spring);
         system.AddForce(new LinearDrag(_damping));
         system.AddForce(Forces.Gravity.Down(_gravity));
+        system.AddConstraints(new SpringProjection(spring)); // how xpbd steps the spring
         return system;
     }
 

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Constraints;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Numerics;
 
@@ -68,7 +69,7 @@ public sealed class TwoMassChainScenario : IExactSolution
     /// <summary>g, in m/s^2 (default 9.81).</summary>
     public double Gravity { get => _gravity; set { Guard.NonNegativeFinite(value, nameof(Gravity)); _gravity = value; } }
 
-    /// <summary>Builds the particle system: two particles, two springs, drag on each, gravity.</summary>
+    /// <summary>Builds the particle system: two particles, two springs, drag on each, gravity (and the springs' projection for xpbd).</summary>
     public ParticleWorld Build()
     {
         var system = new ParticleWorld(2);
@@ -81,6 +82,7 @@ public sealed class TwoMassChainScenario : IExactSolution
         system.AddForce(new LinearDrag(_c1, system, new[] { first }));
         system.AddForce(new LinearDrag(_c2, system, new[] { second }));
         system.AddForce(Forces.Gravity.Down(_gravity));
+        system.AddConstraints(new SpringProjection(springs)); // how xpbd steps the springs
         return system;
     }
 

@@ -252,8 +252,8 @@ public sealed class SimulationSnapshot
     /// </summary>
     /// <exception cref="InvalidDataException">
     /// The stream ends early, is not a snapshot (magic), has another format version, impossible counts, a checksum
-    /// that does not match, or values no system can hold (non-finite, a mass that is not positive, a pinned particle
-    /// that moves). The message says which.
+    /// that does not match, or values no system can hold (non-finite, a mass that is not positive). A pinned particle
+    /// may have a velocity (a kinematic anchor the host drives). The message says which.
     /// </exception>
     public static SimulationSnapshot ReadFrom(Stream stream)
     {
@@ -383,13 +383,6 @@ public sealed class SimulationSnapshot
             {
                 throw new InvalidDataException(
                     $"Particle {i}'s mass is {Guard.Format(mass)}; it must be a positive finite number.");
-            }
-
-            var v = (3 * n) + (3 * i);
-            if (snapshot._pinned[i]
-                && (snapshot._state[v] != 0.0 || snapshot._state[v + 1] != 0.0 || snapshot._state[v + 2] != 0.0))
-            {
-                throw new InvalidDataException($"Particle {i} is pinned but has a velocity; a pinned particle's is zero.");
             }
         }
 

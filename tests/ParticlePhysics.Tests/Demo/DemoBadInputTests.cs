@@ -36,6 +36,22 @@ public class DemoBadInputTests
     [InlineData("option without its value", "free-fall --dt", "--dt")]
     [InlineData("stray argument", "free-fall 0.01", "0.01")]
     [InlineData("plot into a missing folder", "free-fall --plot /no/such/folder/x.svg", "/no/such/folder/x.svg")]
+    [InlineData("angle of 0", "pendulum --angle 0", "--angle", "0", "between 0 and 180")]
+    [InlineData("angle of 180", "pendulum --angle 180", "--angle", "180")]
+    [InlineData("negative angle", "pendulum --angle -30", "--angle", "-30")]
+    [InlineData("zero rod length", "pendulum --length 0", "--length", "'0'")]
+    [InlineData("even particles", "hanging-chain --particles 10", "--particles", "'10'", "odd", "3 to 1001")]
+    [InlineData("too few particles", "hanging-chain --particles 1", "--particles", "'1'", "3 to 1001")]
+    [InlineData("too many particles", "hanging-chain --particles 1003", "--particles", "'1003'")]
+    [InlineData("span as long as the chain", "hanging-chain --span 2", "--span", "2", "shorter", "--length")]
+    [InlineData("span longer than the chain", "hanging-chain --length 1 --span 1.5", "--span", "1.5")]
+    [InlineData("zero substeps", "cloth --integrator xpbd --substeps 0", "--substeps", "'0'", "1 to 1000")]
+    [InlineData("too many substeps", "pendulum --integrator xpbd --substeps 1001", "--substeps", "'1001'")]
+    [InlineData("fractional substeps", "hanging-chain --substeps 2.5", "--substeps", "'2.5'", "whole number")]
+    [InlineData("substeps for the scalar ode", "scalar-ode --substeps 4", "--substeps", "scalar-ode")]
+    [InlineData("xpbd on the scalar ode", "scalar-ode --integrator xpbd", "xpbd", "scalar-ode")]
+    [InlineData("convergence of the chain", "convergence hanging-chain", "hanging-chain", "pendulum")]
+    [InlineData("convergence of a pendulum with drag", "convergence pendulum --drag 0.1", "pendulum", "--drag 0")]
     public void Is_refused_with_one_error_line_and_exit_code_2(string what, string commandLine, params string[] mentioned)
     {
         var result = DemoProcess.Run(commandLine.Split(' '));

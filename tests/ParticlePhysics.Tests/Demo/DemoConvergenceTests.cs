@@ -12,6 +12,7 @@ public class DemoConvergenceTests
     [InlineData("free-fall")]
     [InlineData("mass-spring-damper")]
     [InlineData("two-mass-chain")]
+    [InlineData("pendulum")]
     [InlineData("scalar-ode")]
     public void The_default_settings_give_clean_orders(string scenario)
     {

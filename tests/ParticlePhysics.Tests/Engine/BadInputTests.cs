@@ -114,14 +114,16 @@ public class BadInputTests
     }
 
     [Fact]
-    public void A_pinned_particle_cannot_be_given_a_velocity()
+    public void A_kinematic_drive_needs_a_pinned_particle_a_finite_target_and_a_positive_duration()
     {
         var system = TwoParticles(out _);
+        Assert.Throws<InvalidOperationException>(() => system.MoveKinematic(0, new Vector3d(1, 0, 0), 0.1));
         system.Pin(0);
-        AssertRejected(system, "velocity", null, () => system.SetVelocity(0, new Vector3d(1, 0, 0)));
-        var state = system.State.ToArray();
-        state[6] = 1.0;
-        AssertRejected(system, "state", null, () => system.SetState(state));
+        AssertRejected(system, "duration", 0.0, () => system.MoveKinematic(0, Vector3d.Zero, 0));
+        AssertRejected(system, "target", null, () => system.MoveKinematic(0, new Vector3d(double.NaN, 0, 0), 0.1));
+        AssertRejected(system, "target", null, () => system.MoveKinematic(0, new Vector3d(1e300, 0, 0), 1e-300));
+        AssertRejected(system, "velocity", null, () => system.Pin(0, new Vector3d(0, double.PositiveInfinity, 0)));
+        AssertRejected(system, "index", 2, () => system.MoveKinematic(2, Vector3d.Zero, 1));
     }
 
     [Fact]

@@ -2,6 +2,8 @@ using System;
 using System.IO;
 using System.Runtime.CompilerServices;
 using System.Text.RegularExpressions;
+using ParticlePhysics.Cloth;
+using ParticlePhysics.Constraints;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Integrators;
 
@@ -43,6 +45,58 @@ public partial class ReadmeExamplesTests
     }
 
     [Fact]
+    public void The_rod_pendulum_comes_back_after_one_period()
+    {
+        // snippet: rods
+        var world = new ParticleWorld();
+        int bob = world.AddParticle(new Vector3d(1, 0, 0), mass: 1.0);
+        var rods = new RodNetwork(world);
+        rods.AddAnchoredRod(bob, anchor: Vector3d.Zero, length: 1.0); // a hard constraint, not a stiff spring
+        world.AddConstraints(rods);
+        world.AddForce(new Gravity());
+
+        var rk4 = new RungeKutta4();
+        for (int step = 0; step < 2000; step++)
+        {
+            world.Step(rk4, 2.367842 / 2000); // one period: 4 K(k) / sqrt(g / L) at 90 degrees
+        }
+
+        Console.WriteLine(world.GetPosition(bob)); // (1, ~0, 0): back where it started, the rod still 1 m long
+        // end snippet
+
+        Assert.Equal(1, world.GetPosition(bob).X, 1e-9);
+        Assert.Equal(0, world.GetPosition(bob).Y, 1e-5);
+        Assert.Equal(1, world.GetPosition(bob).Length, 1e-12);
+    }
+
+    [Fact]
+    public void The_xpbd_cloth_follows_the_hand_at_60_hz_and_flies_on_when_let_go()
+    {
+        // snippet: xpbd
+        var cloth = new ClothBuilder { Rows = 20, Columns = 20, Spacing = 0.05, Pinning = ClothPinning.None }
+            .WithSprings(stiffness: 1e6, damping: 1)  // far too stiff for rk4 at 60 Hz
+            .Build();
+        var hand = new KinematicBody(cloth.System, Vector3d.Zero, Rotation3d.Identity);
+        hand.Attach(cloth.ParticleIndex(0, 0));      // pinned to the hand, moving with it
+        hand.Attach(cloth.ParticleIndex(0, 19));
+
+        var xpbd = new Xpbd { Substeps = 10 };       // springs projected with compliance 1 / k
+        const double frame = 1.0 / 60;
+        for (int f = 1; f <= 120; f++)
+        {
+            hand.MoveTo(new Vector3d(0.5 * f * frame, 0, 0), Rotation3d.Identity, frame); // 0.5 m/s along x
+            cloth.System.Step(xpbd, frame);
+        }
+
+        hand.Detach(cloth.ParticleIndex(0, 0));      // let go: it keeps the hand's 0.5 m/s
+        // end snippet
+
+        Assert.Equal(0.5, cloth.System.GetVelocity(cloth.ParticleIndex(0, 0)).X, 1e-9);
+        Assert.Equal(1.0, cloth.System.GetPosition(cloth.ParticleIndex(0, 19)).X - 0.95, 1e-9);
+        Assert.All(cloth.System.Positions.ToArray(), p => Assert.True(Math.Abs(p) < 3));
+    }
+
+    [Fact]
     public void Wind_force_from_the_readme_pushes_particles_downwind()
     {
         var system = new ParticleWorld();
@@ -54,7 +108,7 @@ public partial class ReadmeExamplesTests
     }
 
     [Theory]
-    [InlineData("README.md", 2)]
+    [InlineData("README.md", 4)]
     [InlineData("src/ParticlePhysics/README.md", 1)]   // the NuGet package's README
     public void Every_readme_snippet_is_the_code_the_tests_run(string readmePath, int snippets)
     {

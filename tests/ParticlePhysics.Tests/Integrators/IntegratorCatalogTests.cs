@@ -10,7 +10,7 @@ public class IntegratorCatalogTests
     public void Every_name_creates_an_integrator_that_answers_to_it()
     {
         Assert.Equal(
-            new[] { "explicit-euler", "semi-implicit-euler", "implicit-euler", "rk4", "velocity-verlet", "rk45" },
+            new[] { "explicit-euler", "semi-implicit-euler", "implicit-euler", "rk4", "velocity-verlet", "rk45", "xpbd" },
             IntegratorCatalog.Names);
         foreach (var name in IntegratorCatalog.Names)
         {
