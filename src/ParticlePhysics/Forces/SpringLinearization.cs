@@ -82,6 +82,33 @@ internal static unsafe class SpringLinearization
         block[8] += s + (t * uz * uz);
     }
 
+    /// <summary>Adds s I + t u u^T into the blocks at <paramref name="first"/> and <paramref name="second"/>: the same sums as two <see cref="AddBlock"/> calls.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void AddBlockToBoth(double* first, double* second, double* linear)
+    {
+        double ux = linear[0], uy = linear[1], uz = linear[2], s = linear[3], t = linear[4];
+        double xx = s + (t * ux * ux), yy = s + (t * uy * uy), zz = s + (t * uz * uz);
+        double xy = t * ux * uy, xz = t * ux * uz, yz = t * uy * uz;
+        first[0] += xx;
+        first[1] += xy;
+        first[2] += xz;
+        first[3] += xy;
+        first[4] += yy;
+        first[5] += yz;
+        first[6] += xz;
+        first[7] += yz;
+        first[8] += zz;
+        second[0] += xx;
+        second[1] += xy;
+        second[2] += xz;
+        second[3] += xy;
+        second[4] += yy;
+        second[5] += yz;
+        second[6] += xz;
+        second[7] += yz;
+        second[8] += zz;
+    }
+
     /// <summary>Subtracts s I + t u u^T (symmetric) from the 3 x 3 blocks at <paramref name="first"/> and <paramref name="second"/>.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static void SubtractBlock(double* first, double* second, double* linear)

@@ -401,9 +401,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
                 var count = _pairs.Count;
                 for (var s = 0; s < count; s++)
                 {
-                    var q = lin + (LinearStride * s);
-                    SpringLinearization.AddBlock(d + (9L * first[s]), q);
-                    SpringLinearization.AddBlock(d + (9L * second[s]), q);
+                    SpringLinearization.AddBlockToBoth(d + (9L * first[s]), d + (9L * second[s]), lin + (LinearStride * s));
                 }
             }
         }
