@@ -28,7 +28,9 @@ public interface IJacobianCouplings : IForceJacobian
     /// Adds the blocks of the last linearisation into a caller's block matrix (assembly by a local-to-global map):
     /// for each coupling c with <c>forwardBlock[c] &gt;= 0</c>, J_ij (i = first, j = second) into the 3 x 3 block
     /// that starts at <c>destination[9 forwardBlock[c]]</c> and J_ji = J_ij^T into the one at
-    /// <c>destination[9 backwardBlock[c]]</c> (row-major; both may be the same block). A negative forward index skips it.
+    /// <c>destination[9 backwardBlock[c]]</c> (row-major; both may be the same block). A negative index skips that block.
+    /// Each block receives its couplings in increasing order, and nothing outside the named blocks is written, so calls
+    /// whose named blocks do not overlap may run at the same time (the preconditioner assembles in parallel that way).
     /// </summary>
     void AddCouplingBlocks(Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock);
 }

@@ -59,19 +59,22 @@ internal static class LinearPairTerms
         var backward = backwardBlock.ForReading();
         for (var s = 0; s < pairs.Count; s++)
         {
-            if (forward[s] < 0)
+            var k = pairs.Parameters[s] * scale;
+            if (forward[s] >= 0)
             {
-                continue;
+                var f = 9 * forward[s];
+                destination[f] += k;
+                destination[f + 4] += k;
+                destination[f + 8] += k;
             }
 
-            var k = pairs.Parameters[s] * scale;
-            int f = 9 * forward[s], b = 9 * backward[s];
-            destination[f] += k;
-            destination[f + 4] += k;
-            destination[f + 8] += k;
-            destination[b] += k;
-            destination[b + 4] += k;
-            destination[b + 8] += k;
+            if (backward[s] >= 0)
+            {
+                var b = 9 * backward[s];
+                destination[b] += k;
+                destination[b + 4] += k;
+                destination[b + 8] += k;
+            }
         }
     }
 
@@ -89,7 +92,7 @@ internal static class LinearPairTerms
         var backward = backwardBlock.ForReading();
         for (var s = 0; s < count; s++)
         {
-            if (forward[s] >= 0 && (forward[s] >= blocks || (uint)backward[s] >= (uint)blocks))
+            if (forward[s] >= blocks || backward[s] >= blocks)
             {
                 throw new ArgumentOutOfRangeException(
                     nameof(forwardBlock), $"Coupling {s} targets blocks {forward[s]} and {backward[s]}; the destination holds {blocks}.");

@@ -109,9 +109,12 @@ internal static unsafe class SpringLinearization
         second[8] += zz;
     }
 
-    /// <summary>Subtracts s I + t u u^T (symmetric) from the 3 x 3 blocks at <paramref name="first"/> and <paramref name="second"/>.</summary>
+    /// <summary>
+    /// Subtracts s I + t u u^T (symmetric) from the 3 x 3 blocks at <paramref name="first"/> and
+    /// <paramref name="second"/>, or from <paramref name="first"/> alone when <paramref name="once"/>.
+    /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public static void SubtractBlock(double* first, double* second, double* linear)
+    public static void SubtractBlock(double* first, double* second, double* linear, bool once = false)
     {
         double ux = linear[0], uy = linear[1], uz = linear[2], iso = linear[3], t = linear[4];
         double xx = iso + (t * ux * ux), yy = iso + (t * uy * uy), zz = iso + (t * uz * uz);
@@ -125,6 +128,11 @@ internal static unsafe class SpringLinearization
         first[6] -= xz;
         first[7] -= yz;
         first[8] -= zz;
+        if (once)
+        {
+            return;
+        }
+
         second[0] -= xx;
         second[1] -= xy;
         second[2] -= xz;

@@ -432,9 +432,15 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             var count = _pairs.Count;
             for (var s = 0; s < count; s++)
             {
-                if (forward[s] >= 0)
+                int f = forward[s], b = backward[s];
+                if ((f | b) >= 0)
                 {
-                    SpringLinearization.SubtractBlock(c + (9L * forward[s]), c + (9L * backward[s]), lin + (LinearStride * s));
+                    SpringLinearization.SubtractBlock(c + (9L * f), c + (9L * b), lin + (LinearStride * s));
+                }
+                else if (f >= 0 || b >= 0)
+                {
+                    var block = c + (9L * Math.Max(f, b));
+                    SpringLinearization.SubtractBlock(block, block, lin + (LinearStride * s), once: true);
                 }
             }
         }

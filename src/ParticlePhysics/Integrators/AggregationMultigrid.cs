@@ -47,8 +47,9 @@ internal sealed unsafe class AggregationMultigrid
 
     // Fine level: the aggregate of each particle, its members, and the block
     // of level 1 that each fine coupling's A_ij (forward) and A_ji (backward) land in (-1: none).
-    private int[] _forwardFiltered = Array.Empty<int>();
-    private int[] _backwardFiltered = Array.Empty<int>();
+    private readonly AssemblyPass _assembly = new();
+    private int[][] _forwardFiltered = Array.Empty<int[]>();
+    private int[][] _backwardFiltered = Array.Empty<int[]>();
     private bool[] _filteredFor = Array.Empty<bool>(); // the pinned particles the filtered targets were made for
     private int[] _aggregate = Array.Empty<int>();
     private int[] _memberStart = Array.Empty<int>();
@@ -76,7 +77,7 @@ internal sealed unsafe class AggregationMultigrid
     /// Rebuilds the hierarchy if the couplings changed, then the coarse operators from the system's current
     /// linearisation: <paramref name="fineDiagonal"/> holds J_ii (9 values per particle, before inversion).
     /// </summary>
-    public void Setup(ILinearizableSystem system, double[] fineDiagonal, Span<double> masses, Span<double> inverseMasses)
+    public void Setup(ILinearizableSystem system, double[] fineDiagonal, Span<double> masses, Span<double> inverseMasses, IParallelRunner? runner)
     {
         var particles = masses.Length;
         var count = system.CouplingCount;
@@ -90,7 +91,7 @@ internal sealed unsafe class AggregationMultigrid
             return;
         }
 
-        GalerkinFromFine(system, fineDiagonal, masses, inverseMasses, count);
+        GalerkinFromFine(system, fineDiagonal, masses, inverseMasses, count, runner);
         for (var l = 0; l < _levels.Length; l++)
         {
             var level = _levels[l];
@@ -181,49 +182,35 @@ internal sealed unsafe class AggregationMultigrid
     /// <summary>
     /// The level-1 operator: the fine diagonal blocks M - J_ii and the coupling blocks -J_ij summed per aggregate.
     /// The forces add their J_ij straight into the aggregates' blocks (<see cref="ILinearizableSystem.AddCouplingBlocks"/>),
-    /// so the level holds -A_1 until the sign is turned at the end.
+    /// so a block holds -A_1 until its sign is turned at the end. On a runner, each part assembles the block rows of a
+    /// range of aggregates, with the targets outside it masked: every block still gets its terms in the same order.
     /// </summary>
-    private void GalerkinFromFine(ILinearizableSystem system, double[] fineDiagonal, Span<double> masses, Span<double> inverseMasses, int count)
+    private void GalerkinFromFine(
+        ILinearizableSystem system, double[] fineDiagonal, Span<double> masses, Span<double> inverseMasses, int count, IParallelRunner? runner)
     {
-        FilterPinned(inverseMasses, count);
-        var level = _levels[0];
-        Array.Clear(level.Values, 0, level.Values.Length);
-        fixed (double* values = level.Values, fine = fineDiagonal, m = masses, w = inverseMasses)
-        fixed (int* aggregate = _aggregate)
+        var parts = runner is { MaxParallelism: > 1 } ? runner.MaxParallelism : 1;
+        FilterTargets(inverseMasses, count, parts);
+        fixed (double* fine = fineDiagonal, m = masses, w = inverseMasses)
         {
-            for (var i = 0; i < _particles; i++)
+            _assembly.Set(this, system, fine, m, w, count);
+            if (parts > 1)
             {
-                if (w[i] == 0.0)
-                {
-                    continue;
-                }
-
-                double* d = values + (9L * aggregate[i]), f = fine + (9L * i);
-                var mi = m[i];
-                d[0] += f[0] - mi;
-                d[1] += f[1];
-                d[2] += f[2];
-                d[3] += f[3];
-                d[4] += f[4] - mi;
-                d[5] += f[5];
-                d[6] += f[6];
-                d[7] += f[7];
-                d[8] += f[8] - mi;
+                runner!.Run(_assembly, parts);
             }
-        }
-
-        system.AddCouplingBlocks(level.Values, _forwardFiltered.AsSpan(0, count), _backwardFiltered.AsSpan(0, count));
-        var v = level.Values;
-        for (var k = 0; k < v.Length; k++)
-        {
-            v[k] = -v[k];
+            else
+            {
+                _assembly.Execute(0, 1);
+            }
         }
     }
 
-    /// <summary>The level-1 targets of the couplings, without those that touch a pinned particle (rebuilt when pinning changes).</summary>
-    private void FilterPinned(Span<double> inverseMasses, int count)
+    /// <summary>
+    /// The level-1 targets of the couplings for each of <paramref name="parts"/> ranges of aggregates, without
+    /// couplings that touch a pinned particle (rebuilt when pinning, the topology or the parts change).
+    /// </summary>
+    private void FilterTargets(Span<double> inverseMasses, int count, int parts)
     {
-        var same = _filteredFor.Length == _particles;
+        var same = _filteredFor.Length == _particles && _forwardFiltered.Length == parts;
         for (var i = 0; same && i < _particles; i++)
         {
             same = _filteredFor[i] == (inverseMasses[i] == 0.0);
@@ -240,13 +227,93 @@ internal sealed unsafe class AggregationMultigrid
             _filteredFor[i] = inverseMasses[i] == 0.0;
         }
 
-        _forwardFiltered = new int[count];
-        _backwardFiltered = new int[count];
-        for (var e = 0; e < count; e++)
+        var level = _levels[0];
+        _forwardFiltered = new int[parts][];
+        _backwardFiltered = new int[parts][];
+        for (var part = 0; part < parts; part++)
         {
-            var skip = _forwardTarget[e] < 0 || _filteredFor[_first[e]] || _filteredFor[_second[e]];
-            _forwardFiltered[e] = skip ? -1 : _forwardTarget[e];
-            _backwardFiltered[e] = skip ? -1 : _backwardTarget[e];
+            var (begin, end) = Chunk.Range(part, parts, level.Count);
+            var forward = _forwardFiltered[part] = new int[count];
+            var backward = _backwardFiltered[part] = new int[count];
+            for (var e = 0; e < count; e++)
+            {
+                var skip = _forwardTarget[e] < 0 || _filteredFor[_first[e]] || _filteredFor[_second[e]];
+                forward[e] = !skip && level.InRows(_forwardTarget[e], begin, end) ? _forwardTarget[e] : -1;
+                backward[e] = !skip && level.InRows(_backwardTarget[e], begin, end) ? _backwardTarget[e] : -1;
+            }
+        }
+    }
+
+    /// <summary>One part of the level-1 assembly: the block rows of a range of aggregates.</summary>
+    private sealed class AssemblyPass : IParallelWork
+    {
+        private AggregationMultigrid? _owner;
+        private ILinearizableSystem? _system;
+        private double* _fine;
+        private double* _masses;
+        private double* _inverseMasses;
+        private int _count;
+
+        public void Set(AggregationMultigrid owner, ILinearizableSystem system, double* fine, double* masses, double* inverseMasses, int count)
+        {
+            _owner = owner;
+            _system = system;
+            _fine = fine;
+            _masses = masses;
+            _inverseMasses = inverseMasses;
+            _count = count;
+        }
+
+        public void Execute(int chunk, int chunkCount)
+        {
+            var owner = _owner!;
+            var level = owner._levels[0];
+            var (begin, end) = Chunk.Range(chunk, chunkCount, level.Count);
+            var (first, last) = level.BlockRange(begin, end);
+            Array.Clear(level.Values, 9 * first, 9 * (last - first)); // the diagonal blocks of the rows
+            var (offFirst, offLast) = level.OffDiagonalRange(begin, end);
+            Array.Clear(level.Values, 9 * offFirst, 9 * (offLast - offFirst));
+            fixed (double* values = level.Values)
+            fixed (int* memberStart = owner._memberStart, members = owner._members)
+            {
+                for (var a = begin; a < end; a++)
+                {
+                    var d = values + (9L * a);
+                    for (var k = memberStart[a]; k < memberStart[a + 1]; k++)
+                    {
+                        var i = members[k];
+                        if (_inverseMasses[i] == 0.0)
+                        {
+                            continue;
+                        }
+
+                        var f = _fine + (9L * i);
+                        var mi = _masses[i];
+                        d[0] += f[0] - mi;
+                        d[1] += f[1];
+                        d[2] += f[2];
+                        d[3] += f[3];
+                        d[4] += f[4] - mi;
+                        d[5] += f[5];
+                        d[6] += f[6];
+                        d[7] += f[7];
+                        d[8] += f[8] - mi;
+                    }
+                }
+            }
+
+            _system!.AddCouplingBlocks(
+                level.Values, owner._forwardFiltered[chunk].AsSpan(0, _count), owner._backwardFiltered[chunk].AsSpan(0, _count));
+            var v = level.Values;
+            for (var k = 9 * first; k < 9 * last; k++)
+            {
+                v[k] = -v[k];
+            }
+
+            for (var k = 9 * offFirst; k < 9 * offLast; k++)
+            {
+                v[k] = -v[k];
+            }
         }
     }
 
@@ -644,6 +711,16 @@ internal sealed unsafe class AggregationMultigrid
         public double[] B { get; }
 
         public double[] X { get; private set; }
+
+        /// <summary>True when block <paramref name="target"/> of <see cref="Values"/> lies in rows [begin, end).</summary>
+        public bool InRows(int target, int begin, int end) =>
+            target < Count ? target >= begin && target < end : target - Count >= _rowStart[begin] && target - Count < _rowStart[end];
+
+        /// <summary>The diagonal blocks of rows [begin, end) in <see cref="Values"/>.</summary>
+        public (int First, int Last) BlockRange(int begin, int end) => (begin, end);
+
+        /// <summary>The off-diagonal blocks of rows [begin, end) in <see cref="Values"/>.</summary>
+        public (int First, int Last) OffDiagonalRange(int begin, int end) => (Count + _rowStart[begin], Count + _rowStart[end]);
 
         /// <summary>The index of block (row, column) in <see cref="Values"/>.</summary>
         public int Target(int row, int column)

@@ -241,7 +241,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         if (multigrid)
         {
             _multigrid ??= new AggregationMultigrid();
-            _multigrid.Setup(system, blocks, masses, inverseMasses);
+            _multigrid.Setup(system, blocks, masses, inverseMasses, runner);
             multigrid = _multigrid.HasCoarseLevels;
         }
 
