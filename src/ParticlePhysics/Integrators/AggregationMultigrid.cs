@@ -48,8 +48,11 @@ internal sealed unsafe class AggregationMultigrid
     // Fine level: the aggregate of each particle, its members, and the block
     // of level 1 that each fine coupling's A_ij (forward) and A_ji (backward) land in (-1: none).
     private readonly AssemblyPass _assembly = new();
-    private int[][] _forwardFiltered = Array.Empty<int[]>();
-    private int[][] _backwardFiltered = Array.Empty<int[]>();
+    // The level-1 targets of each part of the assembly, forward then backward: for one part, for the runner's parts,
+    // and the set in use.
+    private int[][] _whole = Array.Empty<int[]>();
+    private int[][] _parted = Array.Empty<int[]>();
+    private int[][] _targets = Array.Empty<int[]>();
     private bool[] _filteredFor = Array.Empty<bool>(); // the pinned particles the filtered targets were made for
     private int[] _aggregate = Array.Empty<int>();
     private int[] _memberStart = Array.Empty<int>();
@@ -210,31 +213,44 @@ internal sealed unsafe class AggregationMultigrid
     /// </summary>
     private void FilterTargets(Span<double> inverseMasses, int count, int parts)
     {
-        var same = _filteredFor.Length == _particles && _forwardFiltered.Length == parts;
+        var same = _filteredFor.Length == _particles;
         for (var i = 0; same && i < _particles; i++)
         {
             same = _filteredFor[i] == (inverseMasses[i] == 0.0);
         }
 
-        if (same)
+        if (!same)
         {
-            return;
+            _filteredFor = new bool[_particles];
+            for (var i = 0; i < _particles; i++)
+            {
+                _filteredFor[i] = inverseMasses[i] == 0.0;
+            }
+
+            _whole = Array.Empty<int[]>();
+            _parted = Array.Empty<int[]>();
         }
 
-        _filteredFor = new bool[_particles];
-        for (var i = 0; i < _particles; i++)
+        // One set of targets for the calling thread alone and one for the runner's parts, so that a host switching
+        // between them does not rebuild (and allocate) at every switch.
+        ref var targets = ref parts == 1 ? ref _whole : ref _parted;
+        if (targets.Length != 2 * parts)
         {
-            _filteredFor[i] = inverseMasses[i] == 0.0;
+            targets = FilteredTargets(count, parts);
         }
 
+        _targets = targets;
+    }
+
+    private int[][] FilteredTargets(int count, int parts)
+    {
         var level = _levels[0];
-        _forwardFiltered = new int[parts][];
-        _backwardFiltered = new int[parts][];
+        var targets = new int[2 * parts][];
         for (var part = 0; part < parts; part++)
         {
             var (begin, end) = Chunk.Range(part, parts, level.Count);
-            var forward = _forwardFiltered[part] = new int[count];
-            var backward = _backwardFiltered[part] = new int[count];
+            var forward = targets[2 * part] = new int[count];
+            var backward = targets[(2 * part) + 1] = new int[count];
             for (var e = 0; e < count; e++)
             {
                 var skip = _forwardTarget[e] < 0 || _filteredFor[_first[e]] || _filteredFor[_second[e]];
@@ -242,6 +258,8 @@ internal sealed unsafe class AggregationMultigrid
                 backward[e] = !skip && level.InRows(_backwardTarget[e], begin, end) ? _backwardTarget[e] : -1;
             }
         }
+
+        return targets;
     }
 
     /// <summary>One part of the level-1 assembly: the block rows of a range of aggregates.</summary>
@@ -303,7 +321,7 @@ internal sealed unsafe class AggregationMultigrid
             }
 
             _system!.AddCouplingBlocks(
-                level.Values, owner._forwardFiltered[chunk].AsSpan(0, _count), owner._backwardFiltered[chunk].AsSpan(0, _count));
+                level.Values, owner._targets[2 * chunk].AsSpan(0, _count), owner._targets[(2 * chunk) + 1].AsSpan(0, _count));
             var v = level.Values;
             for (var k = 9 * first; k < 9 * last; k++)
             {
@@ -322,6 +340,8 @@ internal sealed unsafe class AggregationMultigrid
     {
         _first = new int[count];
         _second = new int[count];
+        _checkFirst = new int[count]; // (here, so that the next step's check allocates nothing)
+        _checkSecond = new int[count];
         system.WriteCouplings(_first, _second);
         _couplings = count;
         _particles = particles;
