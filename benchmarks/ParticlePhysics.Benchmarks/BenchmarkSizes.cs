@@ -23,8 +23,8 @@ internal static class BenchmarkSizes
     /// <summary>n for the spring-loop experiments: 32 and 128 (quick: 16).</summary>
     public static IEnumerable<int> Kernel => Quick ? new[] { 16 } : new[] { 32, 128 };
 
-    /// <summary>n for the implicit Euler benchmarks (issue 3): 64 (quick: 16).</summary>
-    public static IEnumerable<int> Implicit => Quick ? new[] { 16 } : new[] { 64 };
+    /// <summary>n for the implicit Euler benchmarks (issues 3 and 13): 64 and 128 (quick: 16).</summary>
+    public static IEnumerable<int> Implicit => Quick ? new[] { 16 } : new[] { 64, 128 };
 
     /// <summary>n for the one-core / two-core comparison (issue 5): 64 and 128 (quick: 16 and 48, above the parallel threshold).</summary>
     public static IEnumerable<int> Parallel => Quick ? new[] { 48 } : new[] { 64, 128 };

@@ -22,3 +22,12 @@ public sealed class IntegratorColumnsConfig : ManualConfig
         AddColumn(StatisticColumn.Median, StatisticColumn.Min, SimulatedTimeColumn.TimeStep, SimulatedTimeColumn.CostPerSimulatedSecond);
     }
 }
+
+/// <summary>The computed columns of the implicit Euler benchmarks: CG iterations per step and the cost per iteration.</summary>
+public sealed class ImplicitColumnsConfig : ManualConfig
+{
+    public ImplicitColumnsConfig()
+    {
+        AddColumn(StatisticColumn.Median, StatisticColumn.Min, ImplicitIterationsColumn.IterationsPerStep, ImplicitIterationsColumn.MicrosecondsPerIteration);
+    }
+}

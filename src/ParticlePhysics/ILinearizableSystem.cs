@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics;
 
@@ -11,6 +12,9 @@ namespace ParticlePhysics;
 /// The stepper calls <see cref="Linearize"/> once per step, then any number of <see cref="AddJacobianProduct"/> and
 /// <see cref="AddDiagonalBlocks"/> calls, which all use the J stored by that call. J must be symmetric and negative
 /// semi-definite, so that M - J is symmetric positive definite (see <see cref="IForceJacobian"/>).
+/// A preconditioner that handles the long wavelengths of a large system (multigrid) needs J's sparsity and values
+/// as well: <see cref="CouplingCount"/>, <see cref="WriteCouplings"/> and <see cref="AddCouplingBlocks"/> give them,
+/// for the forces that state theirs (<see cref="IJacobianCouplings"/>).
 /// </remarks>
 public interface ILinearizableSystem : ISecondOrderSystem
 {
@@ -48,4 +52,23 @@ public interface ILinearizableSystem : ISecondOrderSystem
 
     /// <summary>Adds the diagonal 3 x 3 blocks J_ii into <paramref name="blocks"/> (9 values per particle, row-major).</summary>
     void AddDiagonalBlocks(Span<double> blocks);
+
+    /// <summary>
+    /// The off-diagonal couplings of the J stored by the last <see cref="Linearize"/>: pairs (i, j) of distinct
+    /// particles, possibly repeated, whose block J_ij may be non-zero. Changes only when the topology does.
+    /// </summary>
+    int CouplingCount { get; }
+
+    /// <summary>Writes the coupled pairs (<see cref="CouplingCount"/> values each), in a fixed order.</summary>
+    void WriteCouplings(Span<int> first, Span<int> second);
+
+    /// <summary>
+    /// Adds the blocks J_ij and J_ji of the couplings into a caller's block matrix, as
+    /// <see cref="IJacobianCouplings.AddCouplingBlocks"/> does, with one forward and one backward block index per
+    /// coupling in the order of <see cref="WriteCouplings"/>.
+    /// </summary>
+    void AddCouplingBlocks(Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock);
+
+    /// <summary>The runner over which the stepper may split its own passes, or null for the calling thread alone.</summary>
+    IParallelRunner? Runner { get; }
 }

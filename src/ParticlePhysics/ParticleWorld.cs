@@ -656,7 +656,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
             }
         }
 
-        var view = new ParticleState(time, positions, velocities, Masses, InverseMasses);
+        var view = new ParticleState(time, positions, velocities, Masses, InverseMasses, Runner);
         for (var j = 0; j < _linearized.Count; j++)
         {
             _linearized[j].Linearize(view, positionScale, velocityScale, positionJacobianTimesVelocity);
@@ -678,6 +678,55 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         for (var j = 0; j < _linearized.Count; j++)
         {
             _linearized[j].AddDiagonalBlocks(blocks);
+        }
+    }
+
+    /// <inheritdoc />
+    /// <remarks>The couplings of the linearised generators that state theirs (<see cref="IJacobianCouplings"/>), in order.</remarks>
+    int ILinearizableSystem.CouplingCount
+    {
+        get
+        {
+            var count = 0;
+            for (var j = 0; j < _linearized.Count; j++)
+            {
+                if (_linearized[j] is IJacobianCouplings couplings)
+                {
+                    count += couplings.CouplingCount;
+                }
+            }
+
+            return count;
+        }
+    }
+
+    /// <inheritdoc />
+    void ILinearizableSystem.WriteCouplings(Span<int> first, Span<int> second)
+    {
+        var offset = 0;
+        for (var j = 0; j < _linearized.Count; j++)
+        {
+            if (_linearized[j] is IJacobianCouplings couplings)
+            {
+                var count = couplings.CouplingCount;
+                couplings.WriteCouplings(first.Slice(offset, count), second.Slice(offset, count));
+                offset += count;
+            }
+        }
+    }
+
+    /// <inheritdoc />
+    void ILinearizableSystem.AddCouplingBlocks(Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock)
+    {
+        var offset = 0;
+        for (var j = 0; j < _linearized.Count; j++)
+        {
+            if (_linearized[j] is IJacobianCouplings couplings)
+            {
+                var count = couplings.CouplingCount;
+                couplings.AddCouplingBlocks(destination, forwardBlock.Slice(offset, count), backwardBlock.Slice(offset, count));
+                offset += count;
+            }
         }
     }
 

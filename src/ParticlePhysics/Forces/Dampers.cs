@@ -7,7 +7,7 @@ namespace ParticlePhysics.Forces;
 /// They resist relative motion in every direction, dissipate energy, and conserve total momentum.
 /// Jacobian: df_i/dv_i = df_j/dv_j = -c I, df_i/dv_j = c I.
 /// </summary>
-public sealed class Dampers : IForceGenerator, IBoundForce, IForceJacobian
+public sealed class Dampers : IForceGenerator, IBoundForce, IJacobianCouplings
 {
     private readonly ForceElements _pairs = new(1);
     private readonly ParticleWorld _system;
@@ -66,4 +66,14 @@ public sealed class Dampers : IForceGenerator, IBoundForce, IForceJacobian
     /// <inheritdoc />
     public void AddDiagonalBlocks(Span<double> blocks) =>
         LinearPairTerms.AddDiagonalBlocks(_pairs, blocks, _velocityScale);
+
+    /// <inheritdoc />
+    public int CouplingCount => _pairs.Count;
+
+    /// <inheritdoc />
+    public void WriteCouplings(Span<int> first, Span<int> second) => LinearPairTerms.WriteCouplings(_pairs, first, second);
+
+    /// <inheritdoc />
+    public void AddCouplingBlocks(Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock) =>
+        LinearPairTerms.AddCouplingBlocks(_pairs, destination, forwardBlock, backwardBlock, _velocityScale);
 }

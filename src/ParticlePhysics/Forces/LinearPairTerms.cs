@@ -42,4 +42,61 @@ internal static class LinearPairTerms
             JacobianBlocks.AddIsotropic(blocks, pairs.Second[s], k);
         }
     }
+
+    /// <summary>Writes the pairs of the elements: the couplings of their Jacobian.</summary>
+    public static void WriteCouplings(ForceElements pairs, Span<int> first, Span<int> second)
+    {
+        pairs.First.AsSpan(0, pairs.Count).CopyTo(first);
+        pairs.Second.AsSpan(0, pairs.Count).CopyTo(second);
+    }
+
+    /// <summary>Adds each element's off-diagonal block J_ij = J_ji = (c scale) I, the opposite of its diagonal share, at its targets.</summary>
+    public static void AddCouplingBlocks(
+        ForceElements pairs, Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock, double scale)
+    {
+        CheckTargets(pairs.Count, destination.Length, forwardBlock, backwardBlock);
+        var forward = forwardBlock.ForReading();
+        var backward = backwardBlock.ForReading();
+        for (var s = 0; s < pairs.Count; s++)
+        {
+            var k = pairs.Parameters[s] * scale;
+            if (forward[s] >= 0)
+            {
+                var f = 9 * forward[s];
+                destination[f] += k;
+                destination[f + 4] += k;
+                destination[f + 8] += k;
+            }
+
+            if (backward[s] >= 0)
+            {
+                var b = 9 * backward[s];
+                destination[b] += k;
+                destination[b + 4] += k;
+                destination[b + 8] += k;
+            }
+        }
+    }
+
+    /// <summary>Checks that there is a forward and a backward index per element and that every index names a block of the destination.</summary>
+    public static void CheckTargets(int count, int destinationLength, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock)
+    {
+        if (forwardBlock.Length != count || backwardBlock.Length != count)
+        {
+            throw new ArgumentException(
+                $"There must be one forward and one backward block index per coupling, {count}; got {forwardBlock.Length} and {backwardBlock.Length}.");
+        }
+
+        var blocks = destinationLength / 9;
+        var forward = forwardBlock.ForReading();
+        var backward = backwardBlock.ForReading();
+        for (var s = 0; s < count; s++)
+        {
+            if (forward[s] >= blocks || backward[s] >= blocks)
+            {
+                throw new ArgumentOutOfRangeException(
+                    nameof(forwardBlock), $"Coupling {s} targets blocks {forward[s]} and {backward[s]}; the destination holds {blocks}.");
+            }
+        }
+    }
 }

@@ -14,25 +14,15 @@ namespace ParticlePhysics.Forces;
 internal sealed unsafe class ParallelSpringForces
 {
     private readonly ComputePass _compute = new();
-    private readonly GatherPass _gather = new();
     private double[] _springForces = Array.Empty<double>();
 
-    // Incidence (compressed rows): for particle i, entries _start[i].._start[i + 1] - 1 of _incident hold its
-    // springs in increasing order, encoded as 2 s for a first end (subtract) and 2 s + 1 for a second end (add).
-    private int[] _start = Array.Empty<int>();
-    private int[] _incident = Array.Empty<int>();
-    private int _indexedSprings = -1;
-    private int _indexedParticles = -1;
+    public SpringIncidence Incidence { get; } = new();
 
     public void AddForces(
         ForceElements pairs, int particleCount, ReadOnlySpan<double> x, ReadOnlySpan<double> v, Span<double> forces,
         IParallelRunner runner)
     {
-        if (_indexedSprings != pairs.Count || _indexedParticles != particleCount)
-        {
-            BuildIncidence(pairs, particleCount);
-        }
-
+        Incidence.Update(pairs, particleCount);
         if (_springForces.Length < 3 * pairs.Count)
         {
             _springForces = new double[3 * pairs.First.Length];
@@ -40,41 +30,12 @@ internal sealed unsafe class ParallelSpringForces
 
         var chunks = 4 * runner.MaxParallelism;
         fixed (double* xp = &MemoryMarshal.GetReference(x), vp = &MemoryMarshal.GetReference(v), fp = forces, sf = _springForces, parameters = pairs.Parameters)
-        fixed (int* first = pairs.First, second = pairs.Second, start = _start, incident = _incident)
+        fixed (int* first = pairs.First, second = pairs.Second)
         {
             _compute.Set(xp, vp, sf, parameters, first, second, pairs.Count);
             runner.Run(_compute, chunks);
-            _gather.Set(fp, sf, start, incident, particleCount);
-            runner.Run(_gather, chunks);
+            Incidence.Gather(fp, sf, firstEndAdds: false, runner, chunks);
         }
-    }
-
-    private void BuildIncidence(ForceElements pairs, int particleCount)
-    {
-        var start = new int[particleCount + 1];
-        for (var s = 0; s < pairs.Count; s++)
-        {
-            start[pairs.First[s] + 1]++;
-            start[pairs.Second[s] + 1]++;
-        }
-
-        for (var i = 0; i < particleCount; i++)
-        {
-            start[i + 1] += start[i];
-        }
-
-        var incident = new int[2 * pairs.Count];
-        var fill = (int[])start.Clone();
-        for (var s = 0; s < pairs.Count; s++)
-        {
-            incident[fill[pairs.First[s]]++] = 2 * s;
-            incident[fill[pairs.Second[s]]++] = (2 * s) + 1;
-        }
-
-        _start = start;
-        _incident = incident;
-        _indexedSprings = pairs.Count;
-        _indexedParticles = particleCount;
     }
 
     /// <summary>Pass 1: each spring's force on its first end, F = -(k (l - L) + c (dv . u)) u, as in the sequential loop.</summary>
@@ -126,56 +87,6 @@ internal sealed unsafe class ParallelSpringForces
                 f[0] = magnitude * ux;
                 f[1] = magnitude * uy;
                 f[2] = magnitude * uz;
-            }
-        }
-    }
-
-    /// <summary>Pass 2: each particle adds its springs' forces in increasing spring order.</summary>
-    private sealed class GatherPass : IParallelWork
-    {
-        private double* _forces;
-        private double* _springForces;
-        private int* _start;
-        private int* _incident;
-        private int _particles;
-
-        public void Set(double* forces, double* springForces, int* start, int* incident, int particles)
-        {
-            _forces = forces;
-            _springForces = springForces;
-            _start = start;
-            _incident = incident;
-            _particles = particles;
-        }
-
-        public void Execute(int chunk, int chunkCount)
-        {
-            var (begin, end) = Chunk.Range(chunk, chunkCount, _particles);
-            for (var i = begin; i < end; i++)
-            {
-                var f = _forces + (3 * i);
-                double fx = f[0], fy = f[1], fz = f[2];
-                for (var e = _start[i]; e < _start[i + 1]; e++)
-                {
-                    var code = _incident[e];
-                    var sf = _springForces + (3 * (code >> 1));
-                    if ((code & 1) == 0)
-                    {
-                        fx -= sf[0];
-                        fy -= sf[1];
-                        fz -= sf[2];
-                    }
-                    else
-                    {
-                        fx += sf[0];
-                        fy += sf[1];
-                        fz += sf[2];
-                    }
-                }
-
-                f[0] = fx;
-                f[1] = fy;
-                f[2] = fz;
             }
         }
     }

@@ -1,6 +1,7 @@
 using System;
 using System.Runtime.InteropServices;
 using ParticlePhysics.Numerics;
+using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics.Forces;
 
@@ -18,7 +19,7 @@ namespace ParticlePhysics.Forces;
 /// Choi and Ko 2002); the position derivative of the damping term, which is not symmetric and vanishes when the
 /// ends move together, is left out. Each linearised spring is stored as u and two scalars, s I + t u u^T.
 /// </remarks>
-public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundForce, IForceJacobian, ISpringElements
+public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundForce, IJacobianCouplings, ISpringElements
 {
     // Pair parameters: k, L, c. Anchored parameters: ax, ay, az, k, L, c.
     private const int PairStride = 3;
@@ -37,6 +38,8 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     private ParallelSpringForces? _parallel;
     private int _topologyVersion;
     private int _parameterVersion;
+    private ParallelSpringJacobian? _jacobian;
+    private IParallelRunner? _runner; // the runner of the last Linearize, for the products that use it
 
     /// <summary>An empty network for the particles of <paramref name="system"/>.</summary>
     public SpringNetwork(ParticleWorld system)
@@ -270,9 +273,10 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     }
 
     /// <inheritdoc />
-    public void Linearize(
+    public unsafe void Linearize(
         in ParticleState state, double positionScale, double velocityScale, Span<double> positionJacobianTimesVelocity)
     {
+        CheckSizes(state.Positions.Length, state.Velocities.Length, positionJacobianTimesVelocity.Length);
         if (_linear.Length < LinearStride * _pairs.Count)
         {
             _linear = new double[LinearStride * _pairs.First.Length];
@@ -283,28 +287,47 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             _anchoredLinear = new double[LinearStride * _anchored.First.Length];
         }
 
-        var x = state.Positions.ForReading();
-        var v = state.Velocities.ForReading();
-        var p = _pairs.Parameters;
-        for (var s = 0; s < _pairs.Count; s++)
+        _runner = state.Runner is { MaxParallelism: > 1 } runner && _pairs.Count >= ParallelThreshold ? runner : null;
+        fixed (double* x = &MemoryMarshal.GetReference(state.Positions), v = &MemoryMarshal.GetReference(state.Velocities))
+        fixed (double* into = positionJacobianTimesVelocity, p = _pairs.Parameters, lin = _linear)
+        fixed (int* first = _pairs.First, second = _pairs.Second)
         {
-            int a = 3 * _pairs.First[s], b = 3 * _pairs.Second[s], q = PairStride * s;
-            var (k, iso) = LinearizeOne(
-                x[a] - x[b], x[a + 1] - x[b + 1], x[a + 2] - x[b + 2], p[q], p[q + 1], p[q + 2],
-                positionScale, velocityScale, _linear.AsSpan(LinearStride * s, LinearStride));
-            AddPositionTerm(_linear.AsSpan(LinearStride * s, LinearStride), k, iso,
-                v[a] - v[b], v[a + 1] - v[b + 1], v[a + 2] - v[b + 2], positionJacobianTimesVelocity, a, b);
+            if (_runner is not null)
+            {
+                _parallel ??= new ParallelSpringForces();
+                _jacobian ??= new ParallelSpringJacobian();
+                _parallel.Incidence.Update(_pairs, _system.Count);
+                _jacobian.Linearize(x, v, p, first, second, _pairs.Count, positionScale, velocityScale, lin, into, _parallel.Incidence, _runner);
+            }
+            else
+            {
+                var count = _pairs.Count;
+                var y = stackalloc double[3];
+                for (var s = 0; s < count; s++)
+                {
+                    long a = 3 * first[s], b = 3 * second[s];
+                    SpringLinearization.Pair(x, v, a, b, p + (PairStride * s), positionScale, velocityScale, lin + (LinearStride * s), y);
+                    into[a] += y[0];
+                    into[a + 1] += y[1];
+                    into[a + 2] += y[2];
+                    into[b] -= y[0];
+                    into[b + 1] -= y[1];
+                    into[b + 2] -= y[2];
+                }
+            }
         }
 
+        var xr = state.Positions.ForReading();
+        var vr = state.Velocities.ForReading();
         var r = _anchored.Parameters;
         for (var s = 0; s < _anchored.Count; s++)
         {
             int a = 3 * _anchored.First[s], q = AnchoredStride * s;
             var (k, iso) = LinearizeOne(
-                x[a] - r[q], x[a + 1] - r[q + 1], x[a + 2] - r[q + 2], r[q + 3], r[q + 4], r[q + 5],
+                xr[a] - r[q], xr[a + 1] - r[q + 1], xr[a + 2] - r[q + 2], r[q + 3], r[q + 4], r[q + 5],
                 positionScale, velocityScale, _anchoredLinear.AsSpan(LinearStride * s, LinearStride));
             AddPositionTerm(_anchoredLinear.AsSpan(LinearStride * s, LinearStride), k, iso,
-                v[a], v[a + 1], v[a + 2], positionJacobianTimesVelocity, a, -1);
+                vr[a], vr[a + 1], vr[a + 2], positionJacobianTimesVelocity, a, -1);
         }
     }
 
@@ -318,22 +341,30 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         fixed (double* wp = &MemoryMarshal.GetReference(w), y = result, lin = _linear)
         fixed (int* first = _pairs.First, second = _pairs.Second)
         {
-            var count = _pairs.Count;
-            for (var s = 0; s < count; s++)
+            if (_runner is not null && _jacobian is not null && _parallel is not null)
             {
-                long a = 3 * first[s], b = 3 * second[s];
-                double* wa = wp + a, wb = wp + b, ya = y + a, yb = y + b;
-                var q = lin + (LinearStride * s);
-                double dx = wa[0] - wb[0], dy = wa[1] - wb[1], dz = wa[2] - wb[2];
-                double ux = q[0], uy = q[1], uz = q[2], iso = q[3];
-                var axial = q[4] * ((ux * dx) + (uy * dy) + (uz * dz));
-                double yx = (iso * dx) + (axial * ux), yy = (iso * dy) + (axial * uy), yz = (iso * dz) + (axial * uz);
-                ya[0] += yx;
-                ya[1] += yy;
-                ya[2] += yz;
-                yb[0] -= yx;
-                yb[1] -= yy;
-                yb[2] -= yz;
+                _jacobian.Product(wp, y, lin, first, second, _pairs.Count, _parallel.Incidence, _runner);
+            }
+            else
+            {
+                // The hot loop of every conjugate-gradient iteration, written out as SpringLinearization.Product.
+                var count = _pairs.Count;
+                for (var s = 0; s < count; s++)
+                {
+                    long a = 3 * first[s], b = 3 * second[s];
+                    double* wa = wp + a, wb = wp + b, ya = y + a, yb = y + b;
+                    var q = lin + (LinearStride * s);
+                    double dx = wa[0] - wb[0], dy = wa[1] - wb[1], dz = wa[2] - wb[2];
+                    double ux = q[0], uy = q[1], uz = q[2], iso = q[3];
+                    var axial = q[4] * ((ux * dx) + (uy * dy) + (uz * dz));
+                    double yx = (iso * dx) + (axial * ux), yy = (iso * dy) + (axial * uy), yz = (iso * dz) + (axial * uz);
+                    ya[0] += yx;
+                    ya[1] += yy;
+                    ya[2] += yz;
+                    yb[0] -= yx;
+                    yb[1] -= yy;
+                    yb[2] -= yz;
+                }
             }
         }
 
@@ -351,14 +382,28 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     }
 
     /// <inheritdoc />
-    public void AddDiagonalBlocks(Span<double> blocks)
+    public unsafe void AddDiagonalBlocks(Span<double> blocks)
     {
-        for (var s = 0; s < _pairs.Count; s++)
+        if (blocks.Length < 9 * _system.Count)
         {
-            var q = LinearStride * s;
-            double ux = _linear[q], uy = _linear[q + 1], uz = _linear[q + 2], iso = _linear[q + 3], t = _linear[q + 4];
-            JacobianBlocks.Add(blocks, _pairs.First[s], iso, t, ux, uy, uz);
-            JacobianBlocks.Add(blocks, _pairs.Second[s], iso, t, ux, uy, uz);
+            throw new ArgumentException($"blocks must hold 9 values per particle, {9 * _system.Count}; it holds {blocks.Length}.", nameof(blocks));
+        }
+
+        fixed (double* d = blocks, lin = _linear)
+        fixed (int* first = _pairs.First, second = _pairs.Second)
+        {
+            if (_runner is not null && _jacobian is not null && _parallel is not null)
+            {
+                _jacobian.DiagonalBlocks(d, lin, _parallel.Incidence, _runner);
+            }
+            else
+            {
+                var count = _pairs.Count;
+                for (var s = 0; s < count; s++)
+                {
+                    SpringLinearization.AddBlockToBoth(d + (9L * first[s]), d + (9L * second[s]), lin + (LinearStride * s));
+                }
+            }
         }
 
         for (var s = 0; s < _anchored.Count; s++)
@@ -367,6 +412,37 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             JacobianBlocks.Add(
                 blocks, _anchored.First[s], _anchoredLinear[q + 3], _anchoredLinear[q + 4],
                 _anchoredLinear[q], _anchoredLinear[q + 1], _anchoredLinear[q + 2]);
+        }
+    }
+
+    /// <inheritdoc />
+    public int CouplingCount => _pairs.Count;
+
+    /// <inheritdoc />
+    public void WriteCouplings(Span<int> first, Span<int> second) => LinearPairTerms.WriteCouplings(_pairs, first, second);
+
+    /// <inheritdoc />
+    /// <remarks>Spring s adds s I + t u u^T to J_ii and J_jj, and its opposite to J_ij = J_ji.</remarks>
+    public unsafe void AddCouplingBlocks(Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock)
+    {
+        LinearPairTerms.CheckTargets(_pairs.Count, destination.Length, forwardBlock, backwardBlock);
+        fixed (double* c = destination, lin = _linear)
+        fixed (int* forward = &MemoryMarshal.GetReference(forwardBlock), backward = &MemoryMarshal.GetReference(backwardBlock))
+        {
+            var count = _pairs.Count;
+            for (var s = 0; s < count; s++)
+            {
+                int f = forward[s], b = backward[s];
+                if ((f | b) >= 0)
+                {
+                    SpringLinearization.SubtractBlock(c + (9L * f), c + (9L * b), lin + (LinearStride * s));
+                }
+                else if (f >= 0 || b >= 0)
+                {
+                    var block = c + (9L * Math.Max(f, b));
+                    SpringLinearization.SubtractBlock(block, block, lin + (LinearStride * s), once: true);
+                }
+            }
         }
     }
 

@@ -9,7 +9,7 @@ namespace ParticlePhysics.Forces;
 /// (which makes the mass-spring-damper exactly solvable). Potential energy: k |x_i - x_j|^2 / 2 per spring.
 /// Jacobian: df_i/dx_i = -k I, df_i/dx_j = k I (constant, so implicit Euler is exact backward Euler for it).
 /// </summary>
-public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoundForce, IForceJacobian, ISpringElements
+public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoundForce, IJacobianCouplings, ISpringElements
 {
     // Pair parameters: k. Anchored parameters: ax, ay, az, k.
     private readonly ForceElements _pairs = new(1);
@@ -205,4 +205,14 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
             JacobianBlocks.AddIsotropic(blocks, _anchored.First[s], -_anchored.Parameters[(4 * s) + 3] * _positionScale);
         }
     }
+
+    /// <inheritdoc />
+    public int CouplingCount => _pairs.Count;
+
+    /// <inheritdoc />
+    public void WriteCouplings(Span<int> first, Span<int> second) => LinearPairTerms.WriteCouplings(_pairs, first, second);
+
+    /// <inheritdoc />
+    public void AddCouplingBlocks(Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock) =>
+        LinearPairTerms.AddCouplingBlocks(_pairs, destination, forwardBlock, backwardBlock, _positionScale);
 }

@@ -1,5 +1,6 @@
 using System;
 using ParticlePhysics.Numerics;
+using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics.Integrators;
 
@@ -44,6 +45,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     private double[]? _preconditioned;
     private double[]? _jacobianProduct;
     private double[]? _blocks;
+    private ConjugateGradientPasses? _passes;
+    private AggregationMultigrid? _multigrid;
 
     // Plain-ODE path.
     private double[]? _newtonY;
@@ -95,6 +98,15 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     /// the step ends with the solver's best solution, and <see cref="LastConverged"/> says it fell short.
     /// </summary>
     public bool ThrowIfNotConverged { get; set; }
+
+    /// <summary>
+    /// The preconditioner of the conjugate gradients (default <see cref="ImplicitPreconditioner.Multigrid"/>, which
+    /// falls back to block Jacobi on systems of fewer than <see cref="MultigridThreshold"/> particles or without couplings).
+    /// </summary>
+    public ImplicitPreconditioner Preconditioner { get; set; } = ImplicitPreconditioner.Multigrid;
+
+    /// <summary>Below this many particles the multigrid is not built: block Jacobi costs less there.</summary>
+    public const int MultigridThreshold = 64;
 
     /// <summary>Whether the solve starts from the previous step's velocity change (default true).</summary>
     public bool WarmStart { get; set; } = true;
@@ -208,6 +220,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         var blocks = _blocks = StepChecks.Sized(_blocks, 3 * n);
         var masses = system.Masses.ForReading();
         var inverseMasses = system.InverseMasses.ForReading();
+        var runner = system.Runner is { MaxParallelism: > 1 } parallel ? parallel : null;
         var end = time + h;
 
         // f0, and the linearisation: K v0 accumulates into jw, the diagonal blocks of h D + h^2 K into blocks.
@@ -217,10 +230,19 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         system.Linearize(end, x0, v0, h * h, h, UserForces, jw);
         system.AddDiagonalBlocks(blocks);
 
-        // b = h (f0 + h K v0), filtered; preconditioner P = inverse of the blocks of M - (h D + h^2 K).
+        // b = h (f0 + h K v0), filtered; block Jacobi P = inverse of the blocks of M - (h D + h^2 K); the multigrid's
+        // coarse levels from the same linearisation.
         for (var k = 0; k < n; k++)
         {
             b[k] = inverseMasses[k / 3] == 0.0 ? 0.0 : h * (f0[k] + (h * jw[k]));
+        }
+
+        var multigrid = Preconditioner == ImplicitPreconditioner.Multigrid && n >= 3 * MultigridThreshold;
+        if (multigrid)
+        {
+            _multigrid ??= new AggregationMultigrid();
+            _multigrid.Setup(system, blocks, masses, inverseMasses, runner);
+            multigrid = _multigrid.HasCoarseLevels;
         }
 
         InvertBlocks(blocks, masses, inverseMasses);
@@ -228,7 +250,9 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         // Preconditioned conjugate gradients. Motion is smooth, so dv changes little from step to step: start from
         // the linear extrapolation 2 dv(n-1) - dv(n-2) of the last two steps (or the last one), else from 0. Any start
         // converges to the same tolerance; a good one halves the iterations. Pinned components are always 0.
-        var rhsNorm = Norm(b);
+        var passes = _passes ??= new ConjugateGradientPasses();
+        passes.Bind(dv, r, p, q, z, jw, blocks, masses, inverseMasses, runner);
+        var rhsNorm = Math.Sqrt(passes.Dot(b, b));
         var previous = _previousDv = StepChecks.Sized(_previousDv, n);
         if (!WarmStart || _dvLength != n)
         {
@@ -245,7 +269,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
                 dv[k] = inverseMasses[k / 3] == 0.0 ? 0.0 : guess;
             }
 
-            _ = ApplySystemMatrix(system, dv, q, jw, masses, inverseMasses);
+            _ = ApplySystemMatrix(system, passes, dv);
             for (var k = 0; k < n; k++)
             {
                 r[k] = b[k] - q[k];
@@ -257,43 +281,47 @@ public sealed class ImplicitEuler : IStatefulIntegrator
             Array.Copy(b, r, n);
         }
 
-        var rz = Precondition(blocks, r, z);
+        var rz = Precondition(passes, multigrid, runner);
+        if (multigrid && !(rz > 0.0))
+        {
+            multigrid = false; // not positive along r (a force whose couplings are not of pair form): block Jacobi
+            rz = Precondition(passes, multigrid, runner);
+        }
+
         Array.Copy(z, p, n);
         var iterations = 0;
-        var residualNorm = Norm(r);
+        var residualNorm = Math.Sqrt(passes.Dot(r, r));
         var target = _tolerance * rhsNorm;
         while (residualNorm > target && iterations < _maxIterations)
         {
-            var pq = ApplySystemMatrix(system, p, q, jw, masses, inverseMasses);
+            var pq = ApplySystemMatrix(system, passes, p);
             if (!(pq > 0.0))
             {
                 break; // not positive definite along p (or NaN): keep the best solution so far
             }
 
             var alpha = rz / pq;
-            var rr = 0.0;
-            for (var k = 0; k < dv.Length; k++)
-            {
-                dv[k] += alpha * p[k];
-                var rk = r[k] - (alpha * q[k]);
-                r[k] = rk;
-                rr += rk * rk;
-            }
-
             iterations++;
-            residualNorm = Math.Sqrt(rr);
+            residualNorm = Math.Sqrt(passes.Update(alpha));
             if (residualNorm <= target)
             {
                 break;
             }
 
-            var rzNext = Precondition(blocks, r, z);
+            var rzNext = Precondition(passes, multigrid, runner);
+            if (multigrid && !(rzNext > 0.0))
+            {
+                // The multigrid lost positivity along r: continue with block Jacobi, restarting the directions.
+                multigrid = false;
+                rzNext = Precondition(passes, multigrid, runner);
+                rz = rzNext;
+                Array.Copy(z, p, n);
+                continue;
+            }
+
             var beta = rzNext / rz;
             rz = rzNext;
-            for (var k = 0; k < p.Length; k++)
-            {
-                p[k] = z[k] + (beta * p[k]);
-            }
+            passes.NewDirection(beta);
         }
 
         LastIterations = iterations;
@@ -311,32 +339,16 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         }
     }
 
-    /// <summary>q = (M - J) p on the free particles, 0 on the pinned ones; returns p . q.</summary>
-    private static double ApplySystemMatrix(
-        ILinearizableSystem system, double[] p, double[] q, double[] jw, Span<double> masses, Span<double> inverseMasses)
+    /// <summary>z = P r with the multigrid or block Jacobi; returns r . z, summed in chunk order.</summary>
+    private double Precondition(ConjugateGradientPasses passes, bool multigrid, IParallelRunner? runner) =>
+        multigrid ? _multigrid!.Apply(_blocks!, _residual!, _preconditioned!, passes.InverseMasses, runner) : passes.Jacobi();
+
+    /// <summary>q = (M - J) w on the free particles, 0 on the pinned ones; returns w . q, summed in chunk order.</summary>
+    private static double ApplySystemMatrix(ILinearizableSystem system, ConjugateGradientPasses passes, double[] w)
     {
-        Array.Clear(jw, 0, p.Length);
-        system.AddJacobianProduct(p, jw);
-
-        var pq = 0.0;
-        for (var i = 0; i < masses.Length; i++)
-        {
-            var o = 3 * i;
-            if (inverseMasses[i] == 0.0)
-            {
-                q[o] = q[o + 1] = q[o + 2] = 0.0;
-                continue;
-            }
-
-            var m = masses[i];
-            double qx = (m * p[o]) - jw[o], qy = (m * p[o + 1]) - jw[o + 1], qz = (m * p[o + 2]) - jw[o + 2];
-            q[o] = qx;
-            q[o + 1] = qy;
-            q[o + 2] = qz;
-            pq += (p[o] * qx) + (p[o + 1] * qy) + (p[o + 2] * qz);
-        }
-
-        return pq;
+        Array.Clear(passes.JacobianProduct, 0, w.Length);
+        system.AddJacobianProduct(w, passes.JacobianProduct);
+        return passes.MassMinusJacobian(w);
     }
 
     /// <summary>Turns each 3 x 3 block J_ii into (M_i - J_ii)^-1 in place; pinned particles get the zero block (filtered).</summary>
@@ -379,39 +391,6 @@ public sealed class ImplicitEuler : IStatefulIntegrator
             blocks[o + 8] = c22 * s;
         }
     }
-
-    /// <summary>z = P r with the inverted blocks; returns r . z.</summary>
-    private static double Precondition(double[] inverseBlocks, double[] r, double[] z)
-    {
-        var rz = 0.0;
-        for (var i = 0; i < r.Length / 3; i++)
-        {
-            int o = 3 * i, m = 9 * i;
-            double rx = r[o], ry = r[o + 1], rzz = r[o + 2];
-            var zx = (inverseBlocks[m] * rx) + (inverseBlocks[m + 1] * ry) + (inverseBlocks[m + 2] * rzz);
-            var zy = (inverseBlocks[m + 3] * rx) + (inverseBlocks[m + 4] * ry) + (inverseBlocks[m + 5] * rzz);
-            var zz = (inverseBlocks[m + 6] * rx) + (inverseBlocks[m + 7] * ry) + (inverseBlocks[m + 8] * rzz);
-            z[o] = zx;
-            z[o + 1] = zy;
-            z[o + 2] = zz;
-            rz += (rx * zx) + (ry * zy) + (rzz * zz);
-        }
-
-        return rz;
-    }
-
-    private static double Dot(double[] a, double[] b)
-    {
-        var sum = 0.0;
-        for (var k = 0; k < a.Length; k++)
-        {
-            sum += a[k] * b[k];
-        }
-
-        return sum;
-    }
-
-    private static double Norm(double[] a) => Math.Sqrt(Dot(a, a));
 
     /// <summary>Newton on G(y) = y - y0 - h f(t + h, y) = 0, with a forward-difference Jacobian and partial-pivot LU.</summary>
     private void StepNewton(IOdeSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double h)

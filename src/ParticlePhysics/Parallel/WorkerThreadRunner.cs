@@ -96,7 +96,11 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
         }
 
         _disposed = true;
-        _start.Release(_threads.Length);
+        if (_threads.Length > 0)
+        {
+            _start.Release(_threads.Length); // (a runner of parallelism 1 has no worker to wake: Release(0) throws)
+        }
+
         foreach (var thread in _threads)
         {
             thread.Join();

@@ -56,6 +56,49 @@ public class JacobianTests
                     }
                 }
             }
+
+            // Coupling blocks (what the multigrid assembles): every off-diagonal block of the same matrix, summed over
+            // the couplings of each pair, with J_ji the transpose of J_ij; pairs without a coupling must be zero.
+            if (generator is IJacobianCouplings couplings)
+            {
+                var count = couplings.CouplingCount;
+                int[] first = new int[count], second = new int[count], forward = new int[count], backward = new int[count];
+                couplings.WriteCouplings(first, second);
+                for (var e = 0; e < count; e++)
+                {
+                    forward[e] = 2 * e;
+                    backward[e] = (2 * e) + 1;
+                }
+
+                var assembled = new double[18 * count];
+                couplings.AddCouplingBlocks(assembled, forward, backward);
+                var dense = new double[n, n];
+                for (var e = 0; e < count; e++)
+                {
+                    for (var r = 0; r < 3; r++)
+                    {
+                        for (var c = 0; c < 3; c++)
+                        {
+                            dense[(3 * first[e]) + r, (3 * second[e]) + c] += assembled[(18 * e) + (3 * r) + c];
+                            dense[(3 * second[e]) + r, (3 * first[e]) + c] += assembled[(18 * e) + 9 + (3 * r) + c];
+                        }
+                    }
+                }
+
+                for (var row = 0; row < n; row++)
+                {
+                    for (var col = 0; col < n; col++)
+                    {
+                        if (row / 3 != col / 3)
+                        {
+                            var expected = (a * fdX[row, col]) + (b * fdV[row, col]);
+                            Assert.True(
+                                Math.Abs(dense[row, col] - expected) < 1e-6 * (1 + Math.Abs(expected)),
+                                $"{force}: coupling block J[{row},{col}] = {dense[row, col]}, finite differences {expected}");
+                        }
+                    }
+                }
+            }
         }
 
         // K v, accumulated by Linearize, is df/dx applied to the state's velocities.

@@ -1,0 +1,146 @@
+using System;
+using System.Runtime.CompilerServices;
+
+namespace ParticlePhysics.Forces;
+
+/// <summary>
+/// The per-spring arithmetic of the spring network's Jacobian, shared by the sequential loops and the parallel
+/// passes so that both give the same bits. A linearised spring is stored as (ux, uy, uz, s, t): its block
+/// a df_i/dx_i + b df_i/dv_i = s I + t u u^T (see <see cref="SpringNetwork"/> for the derivation).
+/// </summary>
+internal static unsafe class SpringLinearization
+{
+    /// <summary>
+    /// Linearises the spring between a and b (parameters k, L, c at <paramref name="parameters"/>) into
+    /// <paramref name="linear"/>, and writes df/dx (v_a - v_b) at end a, -(iso dv + axial (u . dv) u), into y.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void Pair(
+        double* x, double* v, long a, long b, double* parameters, double positionScale, double velocityScale,
+        double* linear, double* y)
+    {
+        double k = parameters[0], restLength = parameters[1], c = parameters[2];
+        double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
+        var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
+        double axial, iso;
+        if (lengthSquared == 0.0)
+        {
+            // No direction: a zero-rest-length spring is still -k I; a spring with a rest length exerts no force here.
+            iso = restLength == 0.0 ? k : 0.0;
+            axial = 0.0;
+            linear[0] = linear[1] = linear[2] = linear[4] = 0.0;
+            linear[3] = -positionScale * iso;
+        }
+        else
+        {
+            var length = Math.Sqrt(lengthSquared);
+            var inverse = 1.0 / length;
+            var transverse = Math.Max(0.0, 1.0 - (restLength * inverse));
+            linear[0] = dx * inverse;
+            linear[1] = dy * inverse;
+            linear[2] = dz * inverse;
+            linear[3] = -positionScale * k * transverse;
+            linear[4] = -((positionScale * k * (1.0 - transverse)) + (velocityScale * c));
+            axial = k * (1.0 - transverse);
+            iso = k * transverse;
+        }
+
+        double dvx = v[a] - v[b], dvy = v[a + 1] - v[b + 1], dvz = v[a + 2] - v[b + 2];
+        var along = axial * ((linear[0] * dvx) + (linear[1] * dvy) + (linear[2] * dvz));
+        y[0] = -((iso * dvx) + (along * linear[0]));
+        y[1] = -((iso * dvy) + (along * linear[1]));
+        y[2] = -((iso * dvz) + (along * linear[2]));
+    }
+
+    /// <summary>(s I + t u u^T)(w_a - w_b): the spring's share of J w at end a (end b gets its opposite).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void Product(double* w, long a, long b, double* linear, double* y)
+    {
+        double* wa = w + a, wb = w + b;
+        double dx = wa[0] - wb[0], dy = wa[1] - wb[1], dz = wa[2] - wb[2];
+        double ux = linear[0], uy = linear[1], uz = linear[2], iso = linear[3];
+        var axial = linear[4] * ((ux * dx) + (uy * dy) + (uz * dz));
+        y[0] = (iso * dx) + (axial * ux);
+        y[1] = (iso * dy) + (axial * uy);
+        y[2] = (iso * dz) + (axial * uz);
+    }
+
+    /// <summary>Adds s I + t u u^T into the 3 x 3 block at <paramref name="block"/> (row-major).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void AddBlock(double* block, double* linear)
+    {
+        double ux = linear[0], uy = linear[1], uz = linear[2], s = linear[3], t = linear[4];
+        double xy = t * ux * uy, xz = t * ux * uz, yz = t * uy * uz;
+        block[0] += s + (t * ux * ux);
+        block[1] += xy;
+        block[2] += xz;
+        block[3] += xy;
+        block[4] += s + (t * uy * uy);
+        block[5] += yz;
+        block[6] += xz;
+        block[7] += yz;
+        block[8] += s + (t * uz * uz);
+    }
+
+    /// <summary>Adds s I + t u u^T into the blocks at <paramref name="first"/> and <paramref name="second"/>: the same sums as two <see cref="AddBlock"/> calls.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void AddBlockToBoth(double* first, double* second, double* linear)
+    {
+        double ux = linear[0], uy = linear[1], uz = linear[2], s = linear[3], t = linear[4];
+        double xx = s + (t * ux * ux), yy = s + (t * uy * uy), zz = s + (t * uz * uz);
+        double xy = t * ux * uy, xz = t * ux * uz, yz = t * uy * uz;
+        first[0] += xx;
+        first[1] += xy;
+        first[2] += xz;
+        first[3] += xy;
+        first[4] += yy;
+        first[5] += yz;
+        first[6] += xz;
+        first[7] += yz;
+        first[8] += zz;
+        second[0] += xx;
+        second[1] += xy;
+        second[2] += xz;
+        second[3] += xy;
+        second[4] += yy;
+        second[5] += yz;
+        second[6] += xz;
+        second[7] += yz;
+        second[8] += zz;
+    }
+
+    /// <summary>
+    /// Subtracts s I + t u u^T (symmetric) from the 3 x 3 blocks at <paramref name="first"/> and
+    /// <paramref name="second"/>, or from <paramref name="first"/> alone when <paramref name="once"/>.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void SubtractBlock(double* first, double* second, double* linear, bool once = false)
+    {
+        double ux = linear[0], uy = linear[1], uz = linear[2], iso = linear[3], t = linear[4];
+        double xx = iso + (t * ux * ux), yy = iso + (t * uy * uy), zz = iso + (t * uz * uz);
+        double xy = t * ux * uy, xz = t * ux * uz, yz = t * uy * uz;
+        first[0] -= xx;
+        first[1] -= xy;
+        first[2] -= xz;
+        first[3] -= xy;
+        first[4] -= yy;
+        first[5] -= yz;
+        first[6] -= xz;
+        first[7] -= yz;
+        first[8] -= zz;
+        if (once)
+        {
+            return;
+        }
+
+        second[0] -= xx;
+        second[1] -= xy;
+        second[2] -= xz;
+        second[3] -= xy;
+        second[4] -= yy;
+        second[5] -= yz;
+        second[6] -= xz;
+        second[7] -= yz;
+        second[8] -= zz;
+    }
+}

@@ -1,0 +1,1045 @@
+using System;
+using System.Collections.Generic;
+using ParticlePhysics.Parallel;
+
+namespace ParticlePhysics.Integrators;
+
+/// <summary>
+/// The preconditioner of implicit Euler's conjugate gradients on large systems: a two-level additive method whose
+/// coarse level is an aggregation multigrid V-cycle, built from the couplings the forces state
+/// (<see cref="ILinearizableSystem.CouplingCount"/>), so that it knows nothing of cloths or grids.
+/// </summary>
+/// <remarks>
+/// Block Jacobi, the 3 x 3 diagonal blocks of A = M - J, damps short wavelengths only: on a stiff cloth the
+/// iterations needed grow with its width. Here z = D^-1 r + P B_c P^T r, with P the piecewise-constant prolongation
+/// from aggregates of particles (pairwise matchings, twice per level, by the number of couplings between groups: a
+/// function of the topology alone, so that a restored run rebuilds the same preconditioner) and B_c one V-cycle on
+/// the Galerkin operator A_c = P^T A P. For piecewise-constant P the Galerkin sum is cheap: A_c[I, J] is the sum of
+/// the blocks A_ij with i in I and j in J (couplings inside an aggregate land on its diagonal), and the coarse
+/// operator again has the form mass + pair terms, so the same construction recurses. The V-cycle smooths with one
+/// block-Jacobi sweep before and after the coarse correction; on an operator of that form
+/// x^T A x &lt;= 2 x^T D x - x^T M x, so lambda_max(D^-1 A) &lt; 2 and the sweep converges, which keeps B_c, and
+/// so the preconditioner, symmetric positive definite. The coarsest level (at most 16 aggregates) is solved by a
+/// dense Cholesky factorisation. Additive rather than multiplicative at the top: a multiplicative cycle needs two
+/// more products with the fine operator per iteration, and measured on the 64 x 64 cloth the additive form costs
+/// fewer fine products per step (docs/benchmarks.md). Pinned particles are filtered: they take no part in the
+/// restriction, the prolongation or the Galerkin sums, which therefore follow pinning without a rebuild.
+/// Every pass runs in fixed chunks whose partial sums are combined in chunk order, so the result does not depend
+/// on how many threads run them.
+/// </remarks>
+internal sealed unsafe class AggregationMultigrid
+{
+    /// <summary>The chunks of every fine-level pass, and so the order of every sum: never the thread count.</summary>
+    public const int Chunks = 16;
+
+    private const int CoarsestNodes = 16;
+    private const int MaxLevels = 12;
+
+    private readonly FinePasses _fine = new();
+
+    // The topology the hierarchy was built for.
+    private int[] _first = Array.Empty<int>();
+    private int[] _second = Array.Empty<int>();
+    private int[] _checkFirst = Array.Empty<int>();
+    private int[] _checkSecond = Array.Empty<int>();
+    private int _couplings = -1;
+    private int _particles = -1;
+
+    // Fine level: the aggregate of each particle, its members, and the block
+    // of level 1 that each fine coupling's A_ij (forward) and A_ji (backward) land in (-1: none).
+    private readonly AssemblyPass _assembly = new();
+    // The level-1 targets of each part of the assembly, forward then backward: for one part, for the runner's parts,
+    // and the set in use.
+    private int[][] _whole = Array.Empty<int[]>();
+    private int[][] _parted = Array.Empty<int[]>();
+    private int[][] _targets = Array.Empty<int[]>();
+    private bool[] _filteredFor = Array.Empty<bool>(); // the pinned particles the filtered targets were made for
+    private int[] _aggregate = Array.Empty<int>();
+    private int[] _memberStart = Array.Empty<int>();
+    private int[] _members = Array.Empty<int>();
+    private int[] _forwardTarget = Array.Empty<int>();
+    private int[] _backwardTarget = Array.Empty<int>();
+    private Level[] _levels = Array.Empty<Level>();
+
+    /// <summary>True when there is a coarse level (else the preconditioner is block Jacobi alone).</summary>
+    public bool HasCoarseLevels => _levels.Length > 0;
+
+    /// <summary>The number of aggregates on each coarse level, for diagnostics and tests.</summary>
+    public int[] LevelSizes()
+    {
+        var sizes = new int[_levels.Length];
+        for (var l = 0; l < sizes.Length; l++)
+        {
+            sizes[l] = _levels[l].Count;
+        }
+
+        return sizes;
+    }
+
+    /// <summary>
+    /// Rebuilds the hierarchy if the couplings changed, then the coarse operators from the system's current
+    /// linearisation: <paramref name="fineDiagonal"/> holds J_ii (9 values per particle, before inversion).
+    /// </summary>
+    public void Setup(ILinearizableSystem system, double[] fineDiagonal, Span<double> masses, Span<double> inverseMasses, IParallelRunner? runner)
+    {
+        var particles = masses.Length;
+        var count = system.CouplingCount;
+        if (count != _couplings || particles != _particles || !SameCouplings(system, count))
+        {
+            Build(system, count, particles);
+        }
+
+        if (_levels.Length == 0)
+        {
+            return;
+        }
+
+        GalerkinFromFine(system, fineDiagonal, masses, inverseMasses, count, runner);
+        for (var l = 0; l < _levels.Length; l++)
+        {
+            var level = _levels[l];
+            level.Invert();
+            if (l + 1 < _levels.Length)
+            {
+                level.GalerkinInto(_levels[l + 1]);
+            }
+            else
+            {
+                level.FactorDense();
+            }
+        }
+    }
+
+    /// <summary>
+    /// z = D^-1 r + P B_c P^T r, with <paramref name="fineInverse"/> the inverted fine blocks (zero on pinned
+    /// particles); returns r . z, summed in chunk order.
+    /// </summary>
+    public double Apply(double[] fineInverse, double[] r, double[] z, Span<double> inverseMasses, IParallelRunner? runner)
+    {
+        var first = _levels[0];
+        fixed (double* rp = r, zp = z, inv = fineInverse, w = inverseMasses)
+        fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members)
+        {
+            fixed (double* coarseB = first.B)
+            {
+                _fine.Set(rp, zp, inv, w, coarseB, null, aggregate, memberStart, members, inverseMasses.Length, first.Count);
+                _fine.Operation = FinePasses.Restrict;
+                Run(runner, _fine);
+            }
+
+            Cycle(0, runner);
+            fixed (double* coarseX = first.X) // (after the cycle: a level's X buffer changes at each post-smoothing)
+            {
+                _fine.Set(rp, zp, inv, w, null, coarseX, aggregate, memberStart, members, inverseMasses.Length, first.Count);
+                _fine.Operation = FinePasses.JacobiAndProlong;
+                Run(runner, _fine);
+            }
+
+            return _fine.Sum();
+        }
+    }
+
+    private static void Run(IParallelRunner? runner, IParallelWork work)
+    {
+        if (runner is { MaxParallelism: > 1 })
+        {
+            runner.Run(work, Chunks);
+            return;
+        }
+
+        for (var c = 0; c < Chunks; c++)
+        {
+            work.Execute(c, Chunks);
+        }
+    }
+
+    /// <summary>One V-cycle on coarse level l: X ~ A_l^-1 B.</summary>
+    private void Cycle(int l, IParallelRunner? runner)
+    {
+        var level = _levels[l];
+        if (l == _levels.Length - 1)
+        {
+            level.SolveCoarsest();
+            return;
+        }
+
+        var next = _levels[l + 1];
+        level.PreSmoothAndRestrict(next, runner);
+        Cycle(l + 1, runner);
+        level.ProlongAndPostSmooth(next, runner);
+    }
+
+    private bool SameCouplings(ILinearizableSystem system, int count)
+    {
+        if (_checkFirst.Length < count)
+        {
+            _checkFirst = new int[count];
+            _checkSecond = new int[count];
+        }
+
+        system.WriteCouplings(_checkFirst.AsSpan(0, count), _checkSecond.AsSpan(0, count));
+        return _checkFirst.AsSpan(0, count).SequenceEqual(_first.AsSpan(0, count))
+            && _checkSecond.AsSpan(0, count).SequenceEqual(_second.AsSpan(0, count));
+    }
+
+    /// <summary>
+    /// The level-1 operator: the fine diagonal blocks M - J_ii and the coupling blocks -J_ij summed per aggregate.
+    /// The forces add their J_ij straight into the aggregates' blocks (<see cref="ILinearizableSystem.AddCouplingBlocks"/>),
+    /// so a block holds -A_1 until its sign is turned at the end. On a runner, each part assembles the block rows of a
+    /// range of aggregates, with the targets outside it masked: every block still gets its terms in the same order.
+    /// </summary>
+    private void GalerkinFromFine(
+        ILinearizableSystem system, double[] fineDiagonal, Span<double> masses, Span<double> inverseMasses, int count, IParallelRunner? runner)
+    {
+        var parts = runner is { MaxParallelism: > 1 } ? runner.MaxParallelism : 1;
+        FilterTargets(inverseMasses, count, parts);
+        fixed (double* fine = fineDiagonal, m = masses, w = inverseMasses)
+        {
+            _assembly.Set(this, system, fine, m, w, count);
+            if (parts > 1)
+            {
+                runner!.Run(_assembly, parts);
+            }
+            else
+            {
+                _assembly.Execute(0, 1);
+            }
+        }
+    }
+
+    /// <summary>
+    /// The level-1 targets of the couplings for each of <paramref name="parts"/> ranges of aggregates, without
+    /// couplings that touch a pinned particle (rebuilt when pinning, the topology or the parts change).
+    /// </summary>
+    private void FilterTargets(Span<double> inverseMasses, int count, int parts)
+    {
+        var same = _filteredFor.Length == _particles;
+        for (var i = 0; same && i < _particles; i++)
+        {
+            same = _filteredFor[i] == (inverseMasses[i] == 0.0);
+        }
+
+        if (!same)
+        {
+            _filteredFor = new bool[_particles];
+            for (var i = 0; i < _particles; i++)
+            {
+                _filteredFor[i] = inverseMasses[i] == 0.0;
+            }
+
+            _whole = Array.Empty<int[]>();
+            _parted = Array.Empty<int[]>();
+        }
+
+        // One set of targets for the calling thread alone and one for the runner's parts, so that a host switching
+        // between them does not rebuild (and allocate) at every switch.
+        ref var targets = ref parts == 1 ? ref _whole : ref _parted;
+        if (targets.Length != 2 * parts)
+        {
+            targets = FilteredTargets(count, parts);
+        }
+
+        _targets = targets;
+    }
+
+    private int[][] FilteredTargets(int count, int parts)
+    {
+        var level = _levels[0];
+        var targets = new int[2 * parts][];
+        for (var part = 0; part < parts; part++)
+        {
+            var (begin, end) = Chunk.Range(part, parts, level.Count);
+            var forward = targets[2 * part] = new int[count];
+            var backward = targets[(2 * part) + 1] = new int[count];
+            for (var e = 0; e < count; e++)
+            {
+                var skip = _forwardTarget[e] < 0 || _filteredFor[_first[e]] || _filteredFor[_second[e]];
+                forward[e] = !skip && level.InRows(_forwardTarget[e], begin, end) ? _forwardTarget[e] : -1;
+                backward[e] = !skip && level.InRows(_backwardTarget[e], begin, end) ? _backwardTarget[e] : -1;
+            }
+        }
+
+        return targets;
+    }
+
+    /// <summary>One part of the level-1 assembly: the block rows of a range of aggregates.</summary>
+    private sealed class AssemblyPass : IParallelWork
+    {
+        private AggregationMultigrid? _owner;
+        private ILinearizableSystem? _system;
+        private double* _fine;
+        private double* _masses;
+        private double* _inverseMasses;
+        private int _count;
+
+        public void Set(AggregationMultigrid owner, ILinearizableSystem system, double* fine, double* masses, double* inverseMasses, int count)
+        {
+            _owner = owner;
+            _system = system;
+            _fine = fine;
+            _masses = masses;
+            _inverseMasses = inverseMasses;
+            _count = count;
+        }
+
+        public void Execute(int chunk, int chunkCount)
+        {
+            var owner = _owner!;
+            var level = owner._levels[0];
+            var (begin, end) = Chunk.Range(chunk, chunkCount, level.Count);
+            var (first, last) = level.BlockRange(begin, end);
+            Array.Clear(level.Values, 9 * first, 9 * (last - first)); // the diagonal blocks of the rows
+            var (offFirst, offLast) = level.OffDiagonalRange(begin, end);
+            Array.Clear(level.Values, 9 * offFirst, 9 * (offLast - offFirst));
+            fixed (double* values = level.Values)
+            fixed (int* memberStart = owner._memberStart, members = owner._members)
+            {
+                for (var a = begin; a < end; a++)
+                {
+                    var d = values + (9L * a);
+                    for (var k = memberStart[a]; k < memberStart[a + 1]; k++)
+                    {
+                        var i = members[k];
+                        if (_inverseMasses[i] == 0.0)
+                        {
+                            continue;
+                        }
+
+                        var f = _fine + (9L * i);
+                        var mi = _masses[i];
+                        d[0] += f[0] - mi;
+                        d[1] += f[1];
+                        d[2] += f[2];
+                        d[3] += f[3];
+                        d[4] += f[4] - mi;
+                        d[5] += f[5];
+                        d[6] += f[6];
+                        d[7] += f[7];
+                        d[8] += f[8] - mi;
+                    }
+                }
+            }
+
+            _system!.AddCouplingBlocks(
+                level.Values, owner._targets[2 * chunk].AsSpan(0, _count), owner._targets[(2 * chunk) + 1].AsSpan(0, _count));
+            var v = level.Values;
+            for (var k = 9 * first; k < 9 * last; k++)
+            {
+                v[k] = -v[k];
+            }
+
+            for (var k = 9 * offFirst; k < 9 * offLast; k++)
+            {
+                v[k] = -v[k];
+            }
+        }
+    }
+
+    /// <summary>The aggregation hierarchy for the current couplings: allocates, and runs only when the topology changes.</summary>
+    private void Build(ILinearizableSystem system, int count, int particles)
+    {
+        _first = new int[count];
+        _second = new int[count];
+        _checkFirst = new int[count]; // (here, so that the next step's check allocates nothing)
+        _checkSecond = new int[count];
+        system.WriteCouplings(_first, _second);
+        _couplings = count;
+        _particles = particles;
+        _levels = Array.Empty<Level>();
+        _filteredFor = Array.Empty<bool>();
+        for (var e = 0; e < count; e++)
+        {
+            if ((uint)_first[e] >= (uint)particles || (uint)_second[e] >= (uint)particles)
+            {
+                throw new InvalidOperationException(
+                    $"Coupling {e} joins particles {_first[e]} and {_second[e]}; the system has {particles}.");
+            }
+        }
+
+        var fine = Graph.FromPairs(particles, _first, _second, count);
+        if (particles <= CoarsestNodes || fine.EdgeCount == 0)
+        {
+            return;
+        }
+
+        var levels = new List<Level>();
+        var map = Graph.PairTwice(fine, out var coarseCount);
+        var graph = fine.Contract(map, coarseCount);
+        if (coarseCount > 0.9 * particles)
+        {
+            return; // hardly coupled: block Jacobi does as well
+        }
+
+        _aggregate = map;
+        (_memberStart, _members) = Graph.Members(map, coarseCount);
+        var level = new Level(graph);
+        _forwardTarget = new int[count];
+        _backwardTarget = new int[count];
+        for (var e = 0; e < count; e++)
+        {
+            int i = _first[e], j = _second[e];
+            if (i == j)
+            {
+                _forwardTarget[e] = _backwardTarget[e] = -1;
+                continue;
+            }
+
+            _forwardTarget[e] = level.Target(map[i], map[j]);
+            _backwardTarget[e] = level.Target(map[j], map[i]);
+        }
+
+        levels.Add(level);
+        while (level.Count > CoarsestNodes && levels.Count < MaxLevels)
+        {
+            var nextMap = Graph.PairTwice(graph, out var nextCount);
+            if (nextCount > 0.9 * level.Count)
+            {
+                break;
+            }
+
+            graph = graph.Contract(nextMap, nextCount);
+            var next = new Level(graph);
+            level.LinkTo(next, nextMap);
+            levels.Add(next);
+            level = next;
+        }
+
+        _levels = levels.ToArray();
+    }
+
+    /// <summary>The fine-level passes of <see cref="Apply"/>, in fixed chunks.</summary>
+    private sealed class FinePasses : IParallelWork
+    {
+        public const int Restrict = 0;
+        public const int JacobiAndProlong = 1;
+
+        private readonly double[] _partial = new double[Chunks];
+        private double* _r;
+        private double* _z;
+        private double* _inverse;
+        private double* _inverseMasses;
+        private double* _coarseB;
+        private double* _coarseX;
+        private int* _aggregate;
+        private int* _memberStart;
+        private int* _members;
+        private int _particles;
+        private int _aggregates;
+
+        public int Operation { get; set; }
+
+        public void Set(
+            double* r, double* z, double* inverse, double* inverseMasses, double* coarseB, double* coarseX,
+            int* aggregate, int* memberStart, int* members, int particles, int aggregates)
+        {
+            _r = r;
+            _z = z;
+            _inverse = inverse;
+            _inverseMasses = inverseMasses;
+            _coarseB = coarseB;
+            _coarseX = coarseX;
+            _aggregate = aggregate;
+            _memberStart = memberStart;
+            _members = members;
+            _particles = particles;
+            _aggregates = aggregates;
+        }
+
+        public double Sum()
+        {
+            var sum = 0.0;
+            for (var c = 0; c < Chunks; c++)
+            {
+                sum += _partial[c];
+            }
+
+            return sum;
+        }
+
+        public void Execute(int chunk, int chunkCount)
+        {
+            if (Operation == Restrict)
+            {
+                // B_I = sum of r_i over the free members of aggregate I, in increasing i.
+                var (begin, end) = Chunk.Range(chunk, chunkCount, _aggregates);
+                for (var a = begin; a < end; a++)
+                {
+                    double bx = 0.0, by = 0.0, bz = 0.0;
+                    for (var m = _memberStart[a]; m < _memberStart[a + 1]; m++)
+                    {
+                        var i = _members[m];
+                        if (_inverseMasses[i] == 0.0)
+                        {
+                            continue;
+                        }
+
+                        var ri = _r + (3L * i);
+                        bx += ri[0];
+                        by += ri[1];
+                        bz += ri[2];
+                    }
+
+                    var b = _coarseB + (3L * a);
+                    b[0] = bx;
+                    b[1] = by;
+                    b[2] = bz;
+                }
+
+                return;
+            }
+
+            // z_i = D_i^-1 r_i + X_agg(i) on free particles, 0 on pinned ones; the chunk's share of r . z.
+            var (first, last) = Chunk.Range(chunk, chunkCount, _particles);
+            var rz = 0.0;
+            for (var i = first; i < last; i++)
+            {
+                double* ri = _r + (3L * i), zi = _z + (3L * i), m = _inverse + (9L * i);
+                if (_inverseMasses[i] == 0.0)
+                {
+                    zi[0] = zi[1] = zi[2] = 0.0;
+                    continue;
+                }
+
+                double rx = ri[0], ry = ri[1], rzz = ri[2];
+                var x = _coarseX + (3L * _aggregate[i]);
+                var zx = (m[0] * rx) + (m[1] * ry) + (m[2] * rzz) + x[0];
+                var zy = (m[3] * rx) + (m[4] * ry) + (m[5] * rzz) + x[1];
+                var zz = (m[6] * rx) + (m[7] * ry) + (m[8] * rzz) + x[2];
+                zi[0] = zx;
+                zi[1] = zy;
+                zi[2] = zz;
+                rz += (rx * zx) + (ry * zy) + (rzz * zz);
+            }
+
+            _partial[chunk] = rz;
+        }
+    }
+
+    /// <summary>An undirected graph with weighted edges, rows sorted by column: the couplings of one level.</summary>
+    private sealed class Graph
+    {
+        public Graph(int count, int[] rowStart, int[] column, int[] weight)
+        {
+            Count = count;
+            RowStart = rowStart;
+            Column = column;
+            Weight = weight;
+        }
+
+        public int Count { get; }
+
+        public int[] RowStart { get; }
+
+        public int[] Column { get; }
+
+        public int[] Weight { get; }
+
+        public int EdgeCount => Column.Length;
+
+        /// <summary>The graph of the pairs (both directions, self-pairs dropped), a repeated pair weighing its multiplicity.</summary>
+        public static Graph FromPairs(int count, int[] first, int[] second, int pairs)
+        {
+            var rows = new List<int>[count];
+            for (var e = 0; e < pairs; e++)
+            {
+                if (first[e] != second[e])
+                {
+                    (rows[first[e]] ??= new List<int>()).Add(second[e]);
+                    (rows[second[e]] ??= new List<int>()).Add(first[e]);
+                }
+            }
+
+            return FromRows(count, rows, null);
+        }
+
+        /// <summary>The graph of the groups of <paramref name="map"/>: weights summed, edges inside a group dropped.</summary>
+        public Graph Contract(int[] map, int groups)
+        {
+            var rows = new List<int>[groups];
+            var weights = new List<int>[groups];
+            for (var i = 0; i < Count; i++)
+            {
+                for (var k = RowStart[i]; k < RowStart[i + 1]; k++)
+                {
+                    int a = map[i], b = map[Column[k]];
+                    if (a != b)
+                    {
+                        (rows[a] ??= new List<int>()).Add(b);
+                        (weights[a] ??= new List<int>()).Add(Weight[k]);
+                    }
+                }
+            }
+
+            return FromRows(groups, rows, weights);
+        }
+
+        /// <summary>Two pairwise matchings in a row: aggregates of up to four.</summary>
+        public static int[] PairTwice(Graph graph, out int count)
+        {
+            var first = graph.Match(out var firstCount);
+            var second = graph.Contract(first, firstCount).Match(out count);
+            var map = new int[graph.Count];
+            for (var i = 0; i < map.Length; i++)
+            {
+                map[i] = second[first[i]];
+            }
+
+            return map;
+        }
+
+        /// <summary>The members of each group in increasing order (compressed rows).</summary>
+        public static (int[] Start, int[] Members) Members(int[] map, int groups)
+        {
+            var start = new int[groups + 1];
+            foreach (var g in map)
+            {
+                start[g + 1]++;
+            }
+
+            for (var g = 0; g < groups; g++)
+            {
+                start[g + 1] += start[g];
+            }
+
+            var members = new int[map.Length];
+            var fill = (int[])start.Clone();
+            for (var i = 0; i < map.Length; i++)
+            {
+                members[fill[map[i]]++] = i;
+            }
+
+            return (start, members);
+        }
+
+        /// <summary>
+        /// Greedy matching in increasing node order: each unmatched node pairs with its unmatched neighbour of largest
+        /// weight (the lowest-numbered on a tie), or stays alone. Returns each node's group.
+        /// </summary>
+        private int[] Match(out int groups)
+        {
+            var group = new int[Count];
+            Array.Fill(group, -1);
+            groups = 0;
+            for (var i = 0; i < Count; i++)
+            {
+                if (group[i] >= 0)
+                {
+                    continue;
+                }
+
+                int best = -1, bestWeight = 0;
+                for (var k = RowStart[i]; k < RowStart[i + 1]; k++)
+                {
+                    var j = Column[k];
+                    if (group[j] < 0 && Weight[k] > bestWeight)
+                    {
+                        best = j;
+                        bestWeight = Weight[k];
+                    }
+                }
+
+                group[i] = groups;
+                if (best >= 0)
+                {
+                    group[best] = groups;
+                }
+
+                groups++;
+            }
+
+            return group;
+        }
+
+        private static Graph FromRows(int count, List<int>[] rows, List<int>[]? weights)
+        {
+            var rowStart = new int[count + 1];
+            var columns = new List<int>();
+            var weightList = new List<int>();
+            var merged = new SortedDictionary<int, int>();
+            for (var i = 0; i < count; i++)
+            {
+                merged.Clear();
+                if (rows[i] is { } row)
+                {
+                    for (var k = 0; k < row.Count; k++)
+                    {
+                        merged.TryGetValue(row[k], out var w);
+                        merged[row[k]] = w + (weights is null ? 1 : weights[i][k]);
+                    }
+                }
+
+                foreach (var pair in merged)
+                {
+                    columns.Add(pair.Key);
+                    weightList.Add(pair.Value);
+                }
+
+                rowStart[i + 1] = columns.Count;
+            }
+
+            return new Graph(count, rowStart, columns.ToArray(), weightList.ToArray());
+        }
+    }
+
+    /// <summary>
+    /// One coarse level: diagonal and off-diagonal 3 x 3 blocks (compressed rows, both directions, columns
+    /// increasing), the inverted diagonal, the right-hand side B and solution X of its cycle, and its link to the next.
+    /// </summary>
+    private sealed class Level : IParallelWork
+    {
+        private const int JacobiFromZero = 0;
+        private const int ResidualPass = 1;
+        private const int RestrictPass = 2;
+        private const int ProlongPass = 3;
+        private const int PostSmoothPass = 4;
+
+        // Below this many rows a level's passes stay on the calling thread: waking the workers would cost more.
+        private const int ParallelRows = 1024;
+
+        private readonly int[] _rowStart;
+        private readonly int[] _column;
+        private double[] _residual;
+        private int[] _nextAggregate = Array.Empty<int>();
+        private int[] _nextMemberStart = Array.Empty<int>();
+        private int[] _nextMembers = Array.Empty<int>();
+        private Level? _next;
+        private int _operation;
+        private int _passCount;
+        private int[] _nextTarget = Array.Empty<int>();
+        private double[]? _dense;
+        private bool _denseValid;
+
+        public Level(Graph graph)
+        {
+            Count = graph.Count;
+            _rowStart = graph.RowStart;
+            _column = graph.Column;
+            Values = new double[9 * (Count + _column.Length)];
+            Inverse = new double[9 * Count];
+            B = new double[3 * Count];
+            X = new double[3 * Count];
+            _residual = new double[3 * Count];
+        }
+
+        public int Count { get; }
+
+        /// <summary>The blocks: the diagonal ones (block i for row i), then the off-diagonal ones (block Count + k for entry k).</summary>
+        public double[] Values { get; }
+
+        public double[] Inverse { get; }
+
+        public double[] B { get; }
+
+        public double[] X { get; private set; }
+
+        /// <summary>True when block <paramref name="target"/> of <see cref="Values"/> lies in rows [begin, end).</summary>
+        public bool InRows(int target, int begin, int end) =>
+            target < Count ? target >= begin && target < end : target - Count >= _rowStart[begin] && target - Count < _rowStart[end];
+
+        /// <summary>The diagonal blocks of rows [begin, end) in <see cref="Values"/>.</summary>
+        public (int First, int Last) BlockRange(int begin, int end) => (begin, end);
+
+        /// <summary>The off-diagonal blocks of rows [begin, end) in <see cref="Values"/>.</summary>
+        public (int First, int Last) OffDiagonalRange(int begin, int end) => (Count + _rowStart[begin], Count + _rowStart[end]);
+
+        /// <summary>The index of block (row, column) in <see cref="Values"/>.</summary>
+        public int Target(int row, int column)
+        {
+            if (row == column)
+            {
+                return row;
+            }
+
+            var slot = Array.BinarySearch(_column, _rowStart[row], _rowStart[row + 1] - _rowStart[row], column);
+            if (slot < 0)
+            {
+                throw new InvalidOperationException($"No coarse block ({row}, {column}): the aggregation is inconsistent.");
+            }
+
+            return Count + slot;
+        }
+
+        public void LinkTo(Level next, int[] map)
+        {
+            _nextAggregate = map;
+            (_nextMemberStart, _nextMembers) = Graph.Members(map, next.Count);
+            _nextTarget = new int[_column.Length];
+            for (var i = 0; i < Count; i++)
+            {
+                for (var k = _rowStart[i]; k < _rowStart[i + 1]; k++)
+                {
+                    _nextTarget[k] = next.Target(map[i], map[_column[k]]);
+                }
+            }
+        }
+
+        /// <summary>Inverts the diagonal blocks; a zero block (an aggregate of pinned particles only) becomes the identity.</summary>
+        public void Invert()
+        {
+            for (var i = 0; i < Count; i++)
+            {
+                var o = 9 * i;
+                var d = Values;
+                if (d[o] == 0.0 && d[o + 4] == 0.0 && d[o + 8] == 0.0)
+                {
+                    d[o] = d[o + 4] = d[o + 8] = 1.0;
+                }
+
+                if (!Blocks3.Invert(d, o, Inverse, o))
+                {
+                    Array.Clear(Inverse, o, 9);
+                    Inverse[o] = 1.0 / Math.Max(d[o], double.Epsilon);
+                    Inverse[o + 4] = 1.0 / Math.Max(d[o + 4], double.Epsilon);
+                    Inverse[o + 8] = 1.0 / Math.Max(d[o + 8], double.Epsilon);
+                }
+            }
+        }
+
+        /// <summary>The next level's operator: every block of this one added where its row and column aggregates meet.</summary>
+        public void GalerkinInto(Level next)
+        {
+            Array.Clear(next.Values, 0, next.Values.Length);
+            fixed (double* values = Values, nextValues = next.Values)
+            fixed (int* rowStart = _rowStart, aggregate = _nextAggregate, target = _nextTarget)
+            {
+                for (var i = 0; i < Count; i++)
+                {
+                    Blocks3.Add(nextValues + (9L * aggregate[i]), values + (9L * i));
+                    for (var k = rowStart[i]; k < rowStart[i + 1]; k++)
+                    {
+                        Blocks3.Add(nextValues + (9L * target[k]), values + (9L * (Count + k)));
+                    }
+                }
+            }
+        }
+
+        /// <summary>X = D^-1 B (the pre-smoothing sweep from zero), then the next level's B = P^T (B - A X).</summary>
+        public void PreSmoothAndRestrict(Level next, IParallelRunner? runner)
+        {
+            _next = next;
+            RunPass(JacobiFromZero, Count, runner);
+            RunPass(ResidualPass, Count, runner);
+            RunPass(RestrictPass, next.Count, runner);
+        }
+
+        /// <summary>X += P X_next, then the post-smoothing sweep X += D^-1 (B - A X).</summary>
+        public void ProlongAndPostSmooth(Level next, IParallelRunner? runner)
+        {
+            _next = next;
+            RunPass(ProlongPass, Count, runner);
+            RunPass(PostSmoothPass, Count, runner); // writes the new X into the residual buffer: swap them
+            (X, _residual) = (_residual, X);
+        }
+
+        public void Execute(int chunk, int chunkCount)
+        {
+            var (begin, end) = Chunk.Range(chunk, chunkCount, _passCount);
+            fixed (double* b = B, x = X, r = _residual, inverse = Inverse, values = Values)
+            fixed (int* rowStart = _rowStart, column = _column)
+            {
+                switch (_operation)
+                {
+                    case JacobiFromZero:
+                        Blocks3.MultiplyAll(inverse + (9L * begin), b + (3L * begin), x + (3L * begin), end - begin);
+                        break;
+                    case ResidualPass:
+                    case PostSmoothPass:
+                        for (var i = begin; i < end; i++)
+                        {
+                            double* d = values + (9L * i), xi = x + (3L * i);
+                            double x0 = xi[0], x1 = xi[1], x2 = xi[2];
+                            var bi = b + (3L * i);
+                            var r0 = bi[0] - ((d[0] * x0) + (d[1] * x1) + (d[2] * x2));
+                            var r1 = bi[1] - ((d[3] * x0) + (d[4] * x1) + (d[5] * x2));
+                            var r2 = bi[2] - ((d[6] * x0) + (d[7] * x1) + (d[8] * x2));
+                            for (var k = rowStart[i]; k < rowStart[i + 1]; k++)
+                            {
+                                double* m = values + (9L * (Count + k)), xj = x + (3L * column[k]);
+                                double y0 = xj[0], y1 = xj[1], y2 = xj[2];
+                                r0 -= (m[0] * y0) + (m[1] * y1) + (m[2] * y2);
+                                r1 -= (m[3] * y0) + (m[4] * y1) + (m[5] * y2);
+                                r2 -= (m[6] * y0) + (m[7] * y1) + (m[8] * y2);
+                            }
+
+                            var ri = r + (3L * i);
+                            if (_operation == ResidualPass)
+                            {
+                                ri[0] = r0;
+                                ri[1] = r1;
+                                ri[2] = r2;
+                            }
+                            else
+                            {
+                                // X + D^-1 (B - A X), into the other buffer: the rows still to come read the old X.
+                                var w = inverse + (9L * i);
+                                ri[0] = x0 + ((w[0] * r0) + (w[1] * r1) + (w[2] * r2));
+                                ri[1] = x1 + ((w[3] * r0) + (w[4] * r1) + (w[5] * r2));
+                                ri[2] = x2 + ((w[6] * r0) + (w[7] * r1) + (w[8] * r2));
+                            }
+                        }
+
+                        break;
+                    case RestrictPass:
+                        fixed (double* nextB = _next!.B)
+                        fixed (int* start = _nextMemberStart, members = _nextMembers)
+                        {
+                            for (var a = begin; a < end; a++)
+                            {
+                                double b0 = 0.0, b1 = 0.0, b2 = 0.0;
+                                for (var k = start[a]; k < start[a + 1]; k++)
+                                {
+                                    var ri = r + (3L * members[k]);
+                                    b0 += ri[0];
+                                    b1 += ri[1];
+                                    b2 += ri[2];
+                                }
+
+                                var bi = nextB + (3L * a);
+                                bi[0] = b0;
+                                bi[1] = b1;
+                                bi[2] = b2;
+                            }
+                        }
+
+                        break;
+                    default:
+                        fixed (double* nextX = _next!.X)
+                        fixed (int* aggregate = _nextAggregate)
+                        {
+                            for (var i = begin; i < end; i++)
+                            {
+                                double* xi = x + (3L * i), ci = nextX + (3L * aggregate[i]);
+                                xi[0] += ci[0];
+                                xi[1] += ci[1];
+                                xi[2] += ci[2];
+                            }
+                        }
+
+                        break;
+                }
+            }
+        }
+
+        /// <summary>Runs a pass over <paramref name="count"/> rows in <see cref="Chunks"/> chunks: on the runner for large levels.</summary>
+        private void RunPass(int operation, int count, IParallelRunner? runner)
+        {
+            _operation = operation;
+            _passCount = count;
+            if (runner is not null && Count >= ParallelRows)
+            {
+                runner.Run(this, Chunks);
+                return;
+            }
+
+            for (var c = 0; c < Chunks; c++)
+            {
+                Execute(c, Chunks);
+            }
+        }
+
+        /// <summary>Factorises the dense operator of a small level (Cholesky); block Jacobi if it is large or not positive definite.</summary>
+        public void FactorDense()
+        {
+            _denseValid = false;
+            if (Count > CoarsestNodes)
+            {
+                return;
+            }
+
+            var n = 3 * Count;
+            _dense ??= new double[n * n];
+            var a = _dense;
+            Array.Clear(a, 0, a.Length);
+            for (var i = 0; i < Count; i++)
+            {
+                for (var p = 0; p < 3; p++)
+                {
+                    for (var q = 0; q < 3; q++)
+                    {
+                        a[(((3 * i) + p) * n) + (3 * i) + q] = Values[(9 * i) + (3 * p) + q];
+                    }
+                }
+
+                for (var k = _rowStart[i]; k < _rowStart[i + 1]; k++)
+                {
+                    var j = _column[k];
+                    for (var p = 0; p < 3; p++)
+                    {
+                        for (var q = 0; q < 3; q++)
+                        {
+                            a[(((3 * i) + p) * n) + (3 * j) + q] = Values[(9 * (Count + k)) + (3 * p) + q];
+                        }
+                    }
+                }
+            }
+
+            // In-place Cholesky, lower triangle: A = L L^T.
+            for (var j = 0; j < n; j++)
+            {
+                var s = a[(j * n) + j];
+                for (var k = 0; k < j; k++)
+                {
+                    s -= a[(j * n) + k] * a[(j * n) + k];
+                }
+
+                if (!(s > 0.0) || double.IsInfinity(s))
+                {
+                    return;
+                }
+
+                var pivot = Math.Sqrt(s);
+                a[(j * n) + j] = pivot;
+                for (var i = j + 1; i < n; i++)
+                {
+                    var t = a[(i * n) + j];
+                    for (var k = 0; k < j; k++)
+                    {
+                        t -= a[(i * n) + k] * a[(j * n) + k];
+                    }
+
+                    a[(i * n) + j] = t / pivot;
+                }
+            }
+
+            _denseValid = true;
+        }
+
+        /// <summary>X = A^-1 B by the Cholesky factors, or X = D^-1 B when there are none.</summary>
+        public void SolveCoarsest()
+        {
+            if (!_denseValid)
+            {
+                fixed (double* b = B, x = X, inverse = Inverse)
+                {
+                    Blocks3.MultiplyAll(inverse, b, x, Count);
+                }
+
+                return;
+            }
+
+            var n = 3 * Count;
+            var a = _dense!;
+            for (var i = 0; i < n; i++)
+            {
+                var s = B[i];
+                for (var k = 0; k < i; k++)
+                {
+                    s -= a[(i * n) + k] * X[k];
+                }
+
+                X[i] = s / a[(i * n) + i];
+            }
+
+            for (var i = n - 1; i >= 0; i--)
+            {
+                var s = X[i];
+                for (var k = i + 1; k < n; k++)
+                {
+                    s -= a[(k * n) + i] * X[k];
+                }
+
+                X[i] = s / a[(i * n) + i];
+            }
+        }
+    }
+}

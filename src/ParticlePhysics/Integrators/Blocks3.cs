@@ -1,0 +1,62 @@
+using System;
+
+namespace ParticlePhysics.Integrators;
+
+/// <summary>Row-major 3 x 3 block arithmetic for the implicit solver's preconditioners.</summary>
+internal static unsafe class Blocks3
+{
+    /// <summary>Writes the inverse of the block at a[o] into inverse[p] by cofactors; false if it is singular or not finite.</summary>
+    public static bool Invert(double[] a, int o, double[] inverse, int p)
+    {
+        double m00 = a[o], m01 = a[o + 1], m02 = a[o + 2];
+        double m10 = a[o + 3], m11 = a[o + 4], m12 = a[o + 5];
+        double m20 = a[o + 6], m21 = a[o + 7], m22 = a[o + 8];
+        double c00 = (m11 * m22) - (m12 * m21), c01 = (m02 * m21) - (m01 * m22), c02 = (m01 * m12) - (m02 * m11);
+        double c10 = (m12 * m20) - (m10 * m22), c11 = (m00 * m22) - (m02 * m20), c12 = (m02 * m10) - (m00 * m12);
+        double c20 = (m10 * m21) - (m11 * m20), c21 = (m01 * m20) - (m00 * m21), c22 = (m00 * m11) - (m01 * m10);
+        var determinant = (m00 * c00) + (m01 * c10) + (m02 * c20);
+        if (!(Math.Abs(determinant) > 0.0) || double.IsInfinity(determinant) || double.IsNaN(determinant))
+        {
+            return false;
+        }
+
+        var s = 1.0 / determinant;
+        inverse[p] = c00 * s;
+        inverse[p + 1] = c01 * s;
+        inverse[p + 2] = c02 * s;
+        inverse[p + 3] = c10 * s;
+        inverse[p + 4] = c11 * s;
+        inverse[p + 5] = c12 * s;
+        inverse[p + 6] = c20 * s;
+        inverse[p + 7] = c21 * s;
+        inverse[p + 8] = c22 * s;
+        return true;
+    }
+
+    /// <summary>target += source (9 values).</summary>
+    public static void Add(double* target, double* source)
+    {
+        target[0] += source[0];
+        target[1] += source[1];
+        target[2] += source[2];
+        target[3] += source[3];
+        target[4] += source[4];
+        target[5] += source[5];
+        target[6] += source[6];
+        target[7] += source[7];
+        target[8] += source[8];
+    }
+
+    /// <summary>y_i = M_i x_i for <paramref name="count"/> blocks.</summary>
+    public static void MultiplyAll(double* blocks, double* x, double* y, int count)
+    {
+        for (var i = 0; i < count; i++)
+        {
+            double* m = blocks + (9L * i), xi = x + (3L * i), yi = y + (3L * i);
+            double x0 = xi[0], x1 = xi[1], x2 = xi[2];
+            yi[0] = (m[0] * x0) + (m[1] * x1) + (m[2] * x2);
+            yi[1] = (m[3] * x0) + (m[4] * x1) + (m[5] * x2);
+            yi[2] = (m[6] * x0) + (m[7] * x1) + (m[8] * x2);
+        }
+    }
+}
