@@ -26,6 +26,7 @@ internal sealed class ImpactQueue
     {
         if (_time.Length < capacity)
         {
+            capacity = Math.Max(capacity, 2 * _time.Length); // geometric growth: a count that creeps up reallocates rarely
             _time = new double[capacity];
             _first = new int[capacity];
             _second = new int[capacity];
