@@ -56,7 +56,12 @@ public class DrapeTests
         var lower = new ParticlePhysics.Cloth.ClothBuilder { Rows = 8, Columns = 8, Spacing = 0.05, Pinning = ParticlePhysics.Cloth.ClothPinning.None }.AddTo(world);
         var upper = new ParticlePhysics.Cloth.ClothBuilder
         {
-            Rows = 8, Columns = 8, Spacing = 0.05, Pinning = ParticlePhysics.Cloth.ClothPinning.None, Origin = new Vector3d(0.02, 0.3, 0.02), Gravity = 0,
+            Rows = 8,
+            Columns = 8,
+            Spacing = 0.05,
+            Pinning = ParticlePhysics.Cloth.ClothPinning.None,
+            Origin = new Vector3d(0.02, 0.3, 0.02),
+            Gravity = 0,
         }.AddTo(world);
         for (var i = 0; i < world.Count; i++)
         {
