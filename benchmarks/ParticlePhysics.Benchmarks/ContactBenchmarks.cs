@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using System.Linq;
 using BenchmarkDotNet.Attributes;
 using ParticlePhysics.Contacts;
 using ParticlePhysics.Integrators;
@@ -33,7 +34,7 @@ public class ContactBenchmarks
     public void Setup()
     {
         _world = new ParticleBoxScenario { Count = Particles }.Build();
-        _contacts = (ContactSet)_world.Constraints[0];
+        _contacts = _world.Constraints.OfType<ContactSet>().Single();
         var rk4 = new RungeKutta4();
         for (var s = 0; s < 100; s++)
         {

@@ -621,7 +621,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     {
         Guard.PositiveFinite(dt, nameof(dt));
         return new ConstraintContext(
-            time, dt, startPositions, startVelocities, positions, velocities, Masses, InverseMasses);
+            time, dt, startPositions, startVelocities, positions, velocities, Masses, InverseMasses, Radii);
     }
 
     /// <summary>The generators that no constraint set projects (<see cref="IForceProjection"/>), in their order.</summary>

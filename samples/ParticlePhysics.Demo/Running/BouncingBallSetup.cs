@@ -2,6 +2,7 @@ using System;
 using System.Collections.Generic;
 using System.Globalization;
 using System.IO;
+using System.Linq;
 using ParticlePhysics.Contacts;
 using ParticlePhysics.Demo.Output;
 using ParticlePhysics.Scenarios;
@@ -115,7 +116,7 @@ internal sealed class BouncingBallSetup : ParticleSetup
 
         public void AfterStep(ParticleWorld world)
         {
-            var contacts = (ContactSet)world.Constraints[0];
+            var contacts = world.Constraints.OfType<ContactSet>().Single();
             foreach (var impact in contacts.Impacts)
             {
                 if (!impact.Resting)

@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using System.Linq;
 using ParticlePhysics.Contacts;
 using ParticlePhysics.Demo.Output;
 using ParticlePhysics.Scenarios;
@@ -59,7 +60,7 @@ internal sealed class CollisionSetup : ParticleSetup
 
         public void AfterStep(ParticleWorld world)
         {
-            foreach (var impact in ((ContactSet)world.Constraints[0]).Impacts)
+            foreach (var impact in world.Constraints.OfType<ContactSet>().Single().Impacts)
             {
                 Contact = double.IsNaN(Contact) ? impact.Time : Contact;
             }

@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using System.Linq;
 using ParticlePhysics.Contacts;
 using ParticlePhysics.Demo.Output;
 using ParticlePhysics.Scenarios;
@@ -44,7 +45,7 @@ internal sealed class DrapeSetup : ClothSetup
     /// <summary>The smallest gap of a particle's surface to the sphere's, negative inside.</summary>
     private static double Gap(ParticleWorld world)
     {
-        var sphere = ((ContactSet)world.Constraints[0]).Obstacles[0];
+        var sphere = world.Constraints.OfType<ContactSet>().Single().Obstacles[0];
         var gap = double.PositiveInfinity;
         for (var i = 0; i < world.Count; i++)
         {

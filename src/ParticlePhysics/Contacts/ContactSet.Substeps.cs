@@ -9,10 +9,10 @@ namespace ParticlePhysics.Contacts;
 /// </summary>
 /// <remarks>
 /// <para>
-/// <see cref="Project"/>, once per substep of length h after the prediction: a particle inside an obstacle grown by its
-/// radius (C = phi(x) - r &lt; 0, gradient n) moves by -C n; a particle whose predicted move crossed the obstacle
-/// (found by the same safe steps along the straight move, so that nothing tunnels) is held by the tangent plane at the
-/// point where it touched. Static friction: if the tangential move relative to the obstacle is shorter than mu times
+/// <see cref="Project"/>, once per substep of length h after the prediction: a particle whose predicted move from
+/// outside touched the obstacle grown by its radius (found by the same safe steps along the straight move, so that
+/// nothing tunnels) is held by the tangent plane at the point where it touched: C = (x - x_touch) . n &gt;= 0; one that
+/// was already inside moves by -C n with C = phi(x) - r and n the gradient. Static friction: if the tangential move relative to the obstacle is shorter than mu times
 /// the normal correction, it is undone. Two overlapping particles are pushed apart along their line of centres, each by
 /// its share w_i / (w_a + w_b) of the overlap.
 /// </para>
@@ -87,16 +87,19 @@ public sealed partial class ContactSet
                 var q = position - obstacle.OffsetAt(end);
                 var gap = obstacle.Distance(q.X, q.Y, q.Z, out var nx, out var ny, out var nz) - radius;
                 var normal = new Vector3d(nx, ny, nz);
-                if (!(gap < 0.0))
+                var start = Read(previous, i);
+                var p0 = start - obstacle.OffsetAt(context.Time);
+                var startedOutside = obstacle.Distance(p0.X, p0.Y, p0.Z, out _, out _, out _) - radius >= 0.0;
+                if (!(gap < 0.0) || startedOutside)
                 {
-                    // Outside at the end: did the straight move from the start cross it (a thin wall)?
-                    var start = Read(previous, i);
-                    if (!Crossed(obstacle, start, position, radius, context.Time, h, out var touch, out normal))
+                    // It came from outside: the constraint is the tangent plane where its straight move touched (a thin
+                    // wall crossed, or entered deeper than its middle, would otherwise push it out the far side).
+                    if (Crossed(obstacle, start, position, radius, context.Time, h, out var touch, out var entry))
                     {
-                        continue;
+                        normal = entry;
+                        gap = Vector3d.Dot(position - touch, normal);
                     }
 
-                    gap = Vector3d.Dot(position - touch, normal);
                     if (!(gap < 0.0))
                     {
                         continue;

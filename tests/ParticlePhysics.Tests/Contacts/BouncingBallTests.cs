@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using System.Linq;
 using ParticlePhysics.Contacts;
 using ParticlePhysics.Integrators;
 using ParticlePhysics.Scenarios;
@@ -132,7 +133,7 @@ internal sealed record Bounces(List<double> Apexes, List<double> Impacts, double
     public static Bounces Record(BouncingBallScenario scenario, string integrator, double dt, double duration)
     {
         var world = scenario.Build();
-        var contacts = (ContactSet)world.Constraints[0];
+        var contacts = world.Constraints.OfType<ContactSet>().Single();
         var stepper = IntegratorCatalog.Create(integrator);
         var apexes = new List<double>();
         var impacts = new List<double>();

@@ -1,4 +1,5 @@
 using System;
+using System.Linq;
 using ParticlePhysics.Contacts;
 using ParticlePhysics.Integrators;
 using ParticlePhysics.Scenarios;
@@ -31,7 +32,7 @@ public class ContactStageTests
     public void Substeps_allocate_nothing_once_warm()
     {
         var world = new ParticleBoxScenario { Count = 200 }.Build();
-        var set = (ContactSet)world.Constraints[0];
+        var set = world.Constraints.OfType<ContactSet>().Single();
         var n = world.Count;
         var start = world.State.ToArray();
         var x = start.AsSpan(0, 3 * n).ToArray();
@@ -71,7 +72,7 @@ public class ContactStageTests
     {
         // An obstacle that launches the particle past the divergence limit: the step throws and nothing is committed.
         var world = new BouncingBallScenario().Build();
-        var ground = (PlaneObstacle)((ContactSet)world.Constraints[0]).Obstacles[0];
+        var ground = (PlaneObstacle)world.Constraints.OfType<ContactSet>().Single().Obstacles[0];
         ground.Velocity = new Vector3d(0, 1e13, 0);
         ground.Restitution = 1;
         var before = world.State.ToArray();

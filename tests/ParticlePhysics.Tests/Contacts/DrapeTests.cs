@@ -1,4 +1,5 @@
 using System;
+using System.Linq;
 using ParticlePhysics.Contacts;
 using ParticlePhysics.Integrators;
 using ParticlePhysics.Scenarios;
@@ -14,7 +15,7 @@ public class DrapeTests
         var scenario = new DrapeScenario();
         var cloth = scenario.BuildCloth();
         var world = cloth.System;
-        var contacts = (ContactSet)world.Constraints[0];
+        var contacts = world.Constraints.OfType<ContactSet>().Single();
         var sphere = contacts.Obstacles[0];
         var rk4 = new RungeKutta4();
         var middle = cloth.ParticleIndex(cloth.Rows / 2, cloth.Columns / 2);

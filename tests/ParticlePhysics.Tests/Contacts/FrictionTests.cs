@@ -1,4 +1,5 @@
 using System;
+using System.Linq;
 using ParticlePhysics.Contacts;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Integrators;
@@ -15,6 +16,11 @@ public class FrictionTests
         var data = new TheoryData<string, double>();
         foreach (var name in IntegratorCatalog.Names)
         {
+            if (IntegratorCatalog.IsPositionBased(name))
+            {
+                continue; // xpbd's contacts are first order in the substep (below)
+            }
+
             data.Add(name, 0.001);
             data.Add(name, 1.0 / 60.0);
         }
@@ -33,6 +39,19 @@ public class FrictionTests
         Assert.True(Math.Abs(world.GetPosition(0).X - expected) < 1e-12, $"stopped at {world.GetPosition(0).X:R}, exact {expected:R}");
         Assert.Equal(Vector3d.Zero, world.GetVelocity(0));
         Assert.Equal(0.0, world.GetPosition(0).Y);
+    }
+
+    [Theory]
+    [InlineData(0.001, 5e-4)]
+    [InlineData(1.0 / 60.0, 5e-3)]
+    public void Under_xpbd_a_slide_stops_near_v0_squared_over_2_mu_g(double dt, double tolerance)
+    {
+        const double v0 = 3, mu = 0.5;
+        var world = Ground(mu, Vector3d.Zero, new Vector3d(v0, 0, 0));
+        StepFor(world, "xpbd", dt, 2.0);
+        var expected = v0 * v0 / (2 * mu * G);
+        Assert.True(Math.Abs(world.GetPosition(0).X - expected) < tolerance * expected, $"stopped at {world.GetPosition(0).X:R}, exact {expected:R}");
+        Assert.Equal(Vector3d.Zero, world.GetVelocity(0));
     }
 
     [Fact]
@@ -102,7 +121,7 @@ public class FrictionTests
     {
         // A plane moving along itself (a conveyor belt): geometry unchanged, its velocity enters the friction.
         var world = Ground(0.4, Vector3d.Zero, Vector3d.Zero);
-        var belt = (PlaneObstacle)((ContactSet)world.Constraints[0]).Obstacles[0];
+        var belt = (PlaneObstacle)world.Constraints.OfType<ContactSet>().Single().Obstacles[0];
         belt.Velocity = new Vector3d(1.5, 0, 0);
         var rk4 = new RungeKutta4();
         for (var step = 1; step <= 100; step++)

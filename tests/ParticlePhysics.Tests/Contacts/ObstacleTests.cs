@@ -69,6 +69,7 @@ public class ObstacleTests
     [InlineData("rk4")]
     [InlineData("velocity-verlet")]
     [InlineData("rk45")]
+    [InlineData("xpbd")]
     public void A_particle_at_1000_m_per_s_never_crosses_a_thin_plane_or_box(string integrator)
     {
         // A wall 2 mm thick, a plane, and a particle that moves 16.7 m per step at 60 Hz, at several angles.
@@ -122,7 +123,7 @@ public class ObstacleTests
         var contacts = new ContactSet();
         contacts.Add(obstacle);
         world.AddConstraints(contacts);
-        foreach (var integrator in new[] { "rk4", "semi-implicit-euler" })
+        foreach (var integrator in new[] { "rk4", "semi-implicit-euler", "xpbd" })
         {
             var stepper = IntegratorCatalog.Create(integrator);
             for (var step = 0; step < 200; step++)

@@ -22,7 +22,7 @@ public class ParticleCollisionTests
     {
         var scenario = new CollisionScenario { Mass1 = m1, Mass2 = m2, Restitution = e, Velocity1 = v1, Velocity2 = v2 };
         var world = scenario.Build();
-        var contacts = (ContactSet)world.Constraints[0];
+        var contacts = world.Constraints.OfType<ContactSet>().Single();
         var momentum = world.TotalMomentum();
         var rk4 = new RungeKutta4();
         var impact = double.NaN;

@@ -1,4 +1,5 @@
 using System;
+using System.Linq;
 using ParticlePhysics.Contacts;
 using ParticlePhysics.Integrators;
 using ParticlePhysics.Scenarios;
@@ -13,7 +14,7 @@ public class PileTests
     {
         var scenario = new ParticleBoxScenario { Count = 1000 };
         var world = scenario.Build();
-        var contacts = (ContactSet)world.Constraints[0];
+        var contacts = world.Constraints.OfType<ContactSet>().Single();
         var rk4 = new RungeKutta4();
         var worstOverlap = 0.0;
         for (var step = 1; step <= 1000; step++)

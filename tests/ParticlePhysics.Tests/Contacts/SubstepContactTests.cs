@@ -1,4 +1,5 @@
 using System;
+using System.Linq;
 using ParticlePhysics.Contacts;
 using ParticlePhysics.Scenarios;
 
@@ -130,7 +131,7 @@ public class SubstepContactTests
                 }
             }
 
-            var set = (ContactSet)_world.Constraints[0];
+            var set = _world.Constraints.OfType<ContactSet>().Single();
             var context = new ConstraintContext(
                 _world.Time, h, start.AsSpan(0, 3 * n), start.AsSpan(3 * n), x, v, _world.Masses, _world.InverseMasses, _world.Radii);
             set.Project(in context);
@@ -145,6 +146,65 @@ public class SubstepContactTests
             v.CopyTo(next, 3 * n);
             _world.SetState(next);
             _world.Time += h;
+        }
+    }
+}
+
+/// <summary>The contact set under the world's own xpbd integrator (its substeps call Project and SolveVelocities).</summary>
+public class XpbdContactTests
+{
+    [Fact]
+    public void Under_xpbd_the_ball_bounces_near_the_exact_apexes_and_rests_on_its_radius()
+    {
+        var scenario = new BouncingBallScenario { Radius = 0.1 };
+        var world = scenario.Build();
+        var xpbd = new ParticlePhysics.Integrators.Xpbd(10);
+        var apexes = new System.Collections.Generic.List<double>();
+        for (var step = 0; step < 5000; step++)
+        {
+            var y = world.GetPosition(0).Y;
+            var vy = world.GetVelocity(0).Y;
+            world.Step(xpbd, 0.001);
+            if (vy > 0 && world.GetVelocity(0).Y <= 0)
+            {
+                apexes.Add(Math.Max(y, world.GetPosition(0).Y));
+            }
+        }
+
+        for (var n = 1; n <= 5; n++)
+        {
+            Assert.True(Math.Abs(apexes[n - 1] - scenario.ApexHeight(n)) < 2e-3 * scenario.ApexHeight(n), $"apex {n}: {apexes[n - 1]} vs {scenario.ApexHeight(n)}");
+        }
+
+        Assert.Equal(0.1, world.GetPosition(0).Y, 12);
+        Assert.True(Math.Abs(world.GetVelocity(0).Y) < 1e-3);
+    }
+
+    [Fact]
+    public void Under_xpbd_nothing_crosses_a_thin_wall_and_the_draped_cloth_stays_out_of_the_sphere()
+    {
+        var fast = new ParticleWorld();
+        fast.AddParticle(Vector3d.Zero, new Vector3d(1000, 0, 0), 1);
+        var contacts = new ContactSet();
+        contacts.Add(new BoxObstacle(new Vector3d(10, 0, 0), new Vector3d(0.001, 5, 5)));
+        fast.AddConstraints(contacts);
+        var xpbd = new ParticlePhysics.Integrators.Xpbd();
+        for (var step = 0; step < 60; step++)
+        {
+            fast.Step(xpbd, 1.0 / 60.0);
+            Assert.True(fast.GetPosition(0).X <= 10 - 0.001 + 1e-9, $"crossed to {fast.GetPosition(0)}");
+        }
+
+        var drape = new DrapeScenario();
+        var world = drape.Build();
+        var sphere = world.Constraints.OfType<ContactSet>().Single().Obstacles[0];
+        for (var step = 0; step < 60; step++)
+        {
+            world.Step(xpbd, 1.0 / 60.0);
+            for (var i = 0; i < world.Count; i++)
+            {
+                Assert.True(sphere.SignedDistance(world.GetPosition(i), out _) - drape.Radius >= -1e-6, $"particle {i} inside at step {step}");
+            }
         }
     }
 }
