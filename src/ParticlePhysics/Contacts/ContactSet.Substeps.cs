@@ -22,6 +22,13 @@ namespace ParticlePhysics.Contacts;
 /// being the normal velocity before the solve (that of the prediction); 0 when e |v_n| is below
 /// <see cref="RestingSpeed"/>, and 0 when it was not approaching.
 /// </para>
+/// <para>
+/// What the two calls expect of the context, as the xpbd integrator makes it: in <see cref="Project"/>, the start is
+/// the substep's start (x_prev, v_prev), the positions and velocities are the prediction's (x_prev + h v, v); in
+/// <see cref="SolveVelocities"/>, the velocities are (x - x_prev) / h. Both must be called for every substep, in that
+/// order: the velocity pass uses the contacts the position pass found. Pass the radii (the world's
+/// <see cref="ParticleWorld.Radii"/>): a context without them makes every particle a point.
+/// </para>
 /// </remarks>
 public sealed partial class ContactSet
 {
