@@ -117,11 +117,13 @@ internal sealed class BouncingBallSetup : ParticleSetup
         public void AfterStep(ParticleWorld world)
         {
             var contacts = world.Constraints.OfType<ContactSet>().Single();
+            var bounced = false;
             foreach (var impact in contacts.Impacts)
             {
                 if (!impact.Resting)
                 {
                     Impacts.Add(impact.Time);
+                    bounced = true;
                 }
                 else if (double.IsNaN(RestTime))
                 {
@@ -130,6 +132,15 @@ internal sealed class BouncingBallSetup : ParticleSetup
             }
 
             var velocity = world.GetVelocity(0).Y;
+            if (!bounced && _vy <= 0 && velocity > 0 && _scenario.Gravity > 0)
+            {
+                // A bounce the contact set did not log (xpbd logs only its last substep): its time from the arc after
+                // it, y - R = vy tau + g tau^2 / 2 (tau: the time since the impact).
+                var g = _scenario.Gravity;
+                var tau = (-velocity + Math.Sqrt((velocity * velocity) + (2 * g * Math.Max(0, world.GetPosition(0).Y - _scenario.Radius)))) / g;
+                Impacts.Add(world.Time - tau);
+            }
+
             if (_vy > 0 && velocity <= 0 && contacts.ImpactCount == 0 && _scenario.Gravity > 0)
             {
                 // The top of the flight within this step: exact for a ballistic arc through the state before it.

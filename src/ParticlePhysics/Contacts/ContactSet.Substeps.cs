@@ -41,6 +41,7 @@ public sealed partial class ContactSet
     private double[] _substepDepth = Array.Empty<double>();
     private double[] _substepApproach = Array.Empty<double>();
     private int _substepCount;
+    private double _substepEnd;
 
     /// <inheritdoc />
     public void Project(in ConstraintContext context)
@@ -56,6 +57,7 @@ public sealed partial class ContactSet
         var radii = context.Radii.ForReading();
         var h = context.Dt;
         var end = context.Time + h;
+        _substepEnd = end;
         if (ParticleCollisions)
         {
             var pairs = FindRestingPairs(n, x, radii);
@@ -257,6 +259,11 @@ public sealed partial class ContactSet
             Array.Resize(ref _substepApproach, capacity);
         }
 
+        // The log of impacts: under substeps, those of the last substep (its end as their time), approaching or resting.
+        var e = kind >= 0 ? _obstacles[kind].Restitution : _particleRestitution;
+        var u = Math.Max(-approach, 0.0);
+        Record(_substepEnd, first, kind >= 0 ? kind : second, kind >= 0, u, !(e * u > _restingSpeed));
+        _impactCount--; // Record counted it; the count below is the substep's contacts
         _substepKind[_substepCount] = kind;
         _substepFirst[_substepCount] = first;
         _substepSecond[_substepCount] = second;

@@ -154,7 +154,10 @@ public sealed partial class ContactSet : IConstraintSet
     /// <summary>The number of impacts the last step (or substep) resolved.</summary>
     public int ImpactCount => _impactCount;
 
-    /// <summary>The impacts of the last step, in time order (the first <see cref="MaxRecordedImpacts"/>); valid until the next step.</summary>
+    /// <summary>
+    /// The impacts of the last step, in time order (the first <see cref="MaxRecordedImpacts"/>); valid until the next
+    /// step. Under the position-based integrator, the contacts of its last substep, timed at that substep's end.
+    /// </summary>
     public ReadOnlySpan<ContactImpact> Impacts => _impacts.AsSpan(0, Math.Min(_impactCount, MaxRecordedImpacts));
 
     /// <summary>The number of particle pairs the broad phase gave the last step.</summary>
