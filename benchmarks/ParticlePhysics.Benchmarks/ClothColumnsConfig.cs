@@ -31,3 +31,12 @@ public sealed class ImplicitColumnsConfig : ManualConfig
         AddColumn(StatisticColumn.Median, StatisticColumn.Min, ImplicitIterationsColumn.IterationsPerStep, ImplicitIterationsColumn.MicrosecondsPerIteration);
     }
 }
+
+/// <summary>The computed column of the contact benchmarks: time per particle.</summary>
+public sealed class ContactColumnsConfig : ManualConfig
+{
+    public ContactColumnsConfig()
+    {
+        AddColumn(StatisticColumn.Median, StatisticColumn.Min, PerParticleCountColumn.Instance);
+    }
+}

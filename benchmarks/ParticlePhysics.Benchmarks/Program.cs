@@ -55,7 +55,7 @@ internal static class Program
         if (quick)
         {
             // CI: a filter that silently matches nothing must not pass.
-            foreach (var type in new[] { typeof(ClothStepBenchmarks), typeof(IntegratorBenchmarks), typeof(ComparisonBenchmarks), typeof(SpringKernelBenchmarks), typeof(PackedStepBenchmarks) })
+            foreach (var type in new[] { typeof(ClothStepBenchmarks), typeof(IntegratorBenchmarks), typeof(ComparisonBenchmarks), typeof(SpringKernelBenchmarks), typeof(PackedStepBenchmarks), typeof(ContactBenchmarks) })
             {
                 if (!summaries.Any(s => s.BenchmarksCases.Any(c => c.Descriptor.Type == type)))
                 {

@@ -32,13 +32,37 @@ public readonly ref struct ConstraintContext
         Span<double> velocities,
         ReadOnlySpan<double> masses,
         ReadOnlySpan<double> inverseMasses)
+        : this(time, dt, startPositions, startVelocities, positions, velocities, masses, inverseMasses, ReadOnlySpan<double>.Empty)
+    {
+    }
+
+    /// <summary>Creates a context with the particles' radii (what contacts need); the world does this.</summary>
+    /// <param name="time">The time at the start of the interval, in seconds.</param>
+    /// <param name="dt">The length of the interval, in seconds.</param>
+    /// <param name="startPositions">The positions at the start, 3 values per particle.</param>
+    /// <param name="startVelocities">The velocities at the start, 3 values per particle.</param>
+    /// <param name="positions">The positions at the end, 3 values per particle, to correct in place.</param>
+    /// <param name="velocities">The velocities at the end, 3 values per particle, to correct in place.</param>
+    /// <param name="masses">The masses, one per particle.</param>
+    /// <param name="inverseMasses">The inverse masses, one per particle: 0 for a pinned particle.</param>
+    /// <param name="radii">The radii, one per particle, or empty (all points).</param>
+    public ConstraintContext(
+        double time,
+        double dt,
+        ReadOnlySpan<double> startPositions,
+        ReadOnlySpan<double> startVelocities,
+        Span<double> positions,
+        Span<double> velocities,
+        ReadOnlySpan<double> masses,
+        ReadOnlySpan<double> inverseMasses,
+        ReadOnlySpan<double> radii)
     {
         var n = 3 * masses.Length;
         if (startPositions.Length != n || startVelocities.Length != n || positions.Length != n || velocities.Length != n
-            || inverseMasses.Length != masses.Length)
+            || inverseMasses.Length != masses.Length || (radii.Length != 0 && radii.Length != masses.Length))
         {
             throw new ArgumentException(
-                "positions and velocities need 3 values per particle, and masses and inverse masses one each.");
+                "positions and velocities need 3 values per particle, masses and inverse masses one each, and radii one each or none.");
         }
 
         Time = time;
@@ -49,6 +73,7 @@ public readonly ref struct ConstraintContext
         Velocities = velocities;
         Masses = masses;
         InverseMasses = inverseMasses;
+        Radii = radii;
     }
 
     /// <summary>The time at the start of the interval, in seconds.</summary>
@@ -77,4 +102,10 @@ public readonly ref struct ConstraintContext
 
     /// <summary>The inverse masses, one per particle: 1 / m, or 0 for a pinned particle (which no constraint moves).</summary>
     public ReadOnlySpan<double> InverseMasses { get; }
+
+    /// <summary>
+    /// The radii, one per particle, in metres (<see cref="ParticleWorld.Radii"/>), or empty when the context was made
+    /// without them: every particle is then a point (radius 0). The world always passes them.
+    /// </summary>
+    public ReadOnlySpan<double> Radii { get; }
 }

@@ -42,6 +42,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     private double[] _masses = Array.Empty<double>();
     private double[] _inverseMasses = Array.Empty<double>();
     private bool[] _pinned = Array.Empty<bool>();
+    private double[] _radii = Array.Empty<double>();
     private double[] _forces = Array.Empty<double>();
     private double[] _next = Array.Empty<double>();
     private int _capacity;
@@ -134,6 +135,11 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     public ReadOnlySpan<double> InverseMasses => _inverseMasses.AsSpan(0, _count);
 
     /// <summary>
+    /// The radii, one per particle, in metres (0, the default, for a point): what contacts see of a particle's size.
+    /// </summary>
+    public ReadOnlySpan<double> Radii => _radii.AsSpan(0, _count);
+
+    /// <summary>
     /// The whole state vector [positions | velocities], 6 values per particle: the buffer the integrators advance.
     /// Valid until the system next changes.
     /// </summary>
@@ -181,6 +187,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         _masses[index] = mass;
         _inverseMasses[index] = 1.0 / mass;
         _pinned[index] = false;
+        _radii[index] = 0.0;
         return index;
     }
 
@@ -255,6 +262,25 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         Guard.Mass(mass, nameof(mass));
         _masses[index] = mass;
         _inverseMasses[index] = _pinned[index] ? 0.0 : 1.0 / mass;
+    }
+
+    /// <summary>The radius of a particle, in metres (0 for a point, the default).</summary>
+    public double GetRadius(int index)
+    {
+        Guard.ParticleIndex(index, _count, nameof(index));
+        return _radii[index];
+    }
+
+    /// <summary>
+    /// Gives a particle a radius (a finite number of metres &gt;= 0; 0 makes it a point). Forces do not see it;
+    /// contacts (<see cref="IConstraintSet"/> sets such as the contact set) keep its centre that far from colliders and
+    /// other particles.
+    /// </summary>
+    public void SetRadius(int index, double radius)
+    {
+        Guard.ParticleIndex(index, _count, nameof(index));
+        Guard.NonNegativeFinite(radius, nameof(radius));
+        _radii[index] = radius;
     }
 
     /// <summary>True when the particle is pinned (immovable).</summary>
@@ -445,7 +471,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         var n = 3 * _count;
         var end = _next.AsSpan(0, 2 * n);
         var context = new ConstraintContext(
-            _time, dt, start.Slice(0, n), start.Slice(n, n), end.Slice(0, n), end.Slice(n, n), Masses, InverseMasses);
+            _time, dt, start.Slice(0, n), start.Slice(n, n), end.Slice(0, n), end.Slice(n, n), Masses, InverseMasses, Radii);
         for (var c = 0; c < _constraintSets.Count; c++)
         {
             _constraintSets[c].Resolve(in context);
@@ -595,7 +621,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     {
         Guard.PositiveFinite(dt, nameof(dt));
         return new ConstraintContext(
-            time, dt, startPositions, startVelocities, positions, velocities, Masses, InverseMasses);
+            time, dt, startPositions, startVelocities, positions, velocities, Masses, InverseMasses, Radii);
     }
 
     /// <summary>The generators that no constraint set projects (<see cref="IForceProjection"/>), in their order.</summary>
@@ -832,6 +858,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         Array.Resize(ref _masses, capacity);
         Array.Resize(ref _inverseMasses, capacity);
         Array.Resize(ref _pinned, capacity);
+        Array.Resize(ref _radii, capacity);
         Array.Resize(ref _forces, 3 * capacity);
         _capacity = capacity;
     }

@@ -22,12 +22,16 @@ internal static class DemoCommandLine
         new PendulumDefinition(),
         new HangingChainDefinition(),
         new ScalarOdeDefinition(),
+        new BouncingBallDefinition(),
+        new CollisionDefinition(),
+        new DrapeDefinition(),
     };
 
     public static RootCommand Build(DemoContext context)
     {
         var root = new RootCommand(
-            "ParticlePhysics demo: the course's scenarios (free fall, mass-spring-damper, two-mass chain, cloth, pendulum, hanging chain, scalar ODE) "
+            "ParticlePhysics demo: the course's scenarios (free fall, mass-spring-damper, two-mass chain, cloth, pendulum, hanging chain, scalar ODE, "
+            + "bouncing ball, collision, drape) "
             + "with any integrator, printed as a table, csv or json, optionally plotted as SVG. "
             + "With no arguments, runs every scenario briefly and prints one summary table. Units are SI.");
         foreach (var scenario in Scenarios())

@@ -11,4 +11,7 @@ internal enum NumberRule
 
     /// <summary>A positive finite number (masses, dt, duration, sizes, tolerances).</summary>
     Positive,
+
+    /// <summary>A number from 0 to 1 (restitutions).</summary>
+    Fraction,
 }

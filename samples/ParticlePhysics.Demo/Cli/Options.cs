@@ -102,6 +102,7 @@ internal static class Options
         {
             NumberRule.Positive => value > 0,
             NumberRule.NonNegative => value >= 0,
+            NumberRule.Fraction => value >= 0 && value <= 1,
             _ => true,
         };
         if (!ok)
@@ -110,6 +111,7 @@ internal static class Options
             {
                 NumberRule.Positive => "a positive finite number",
                 NumberRule.NonNegative => "a finite number >= 0",
+                NumberRule.Fraction => "a number from 0 to 1",
                 _ => "a finite number",
             };
             var units = unit.Length == 0 ? string.Empty : $" ({unit})";

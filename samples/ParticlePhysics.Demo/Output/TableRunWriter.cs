@@ -40,6 +40,11 @@ internal sealed class TableRunWriter : IRunWriter
     public void End(RunOutcome outcome)
     {
         _output.WriteLine(Summary.Describe(_setup!, outcome));
+        foreach (var line in _setup!.SummaryDetails)
+        {
+            _output.WriteLine(line);
+        }
+
         _output.Flush();
     }
 }

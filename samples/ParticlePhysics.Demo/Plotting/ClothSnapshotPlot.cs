@@ -47,15 +47,22 @@ internal sealed class ClothSnapshotPlot : IRunPlot
     public string ToSvg(RunOutcome outcome)
     {
         var shots = _latest is null ? _snapshots : _snapshots.Append(_latest).ToList();
+        var circle = _setup.Circle;
         var xs = shots.SelectMany(s => s.X).ToArray();
         var ys = shots.SelectMany(s => s.Y).ToArray();
+        if (circle is { } c)
+        {
+            xs = xs.Append(c.X - c.Radius).Append(c.X + c.Radius).ToArray();
+            ys = ys.Append(c.Y - c.Radius).Append(c.Y + c.Radius).ToArray();
+        }
+
         double xMin = xs.Min(), xMax = xs.Max(), yMin = ys.Min(), yMax = ys.Max();
         var span = Math.Max(Math.Max(xMax - xMin, yMax - yMin), 1e-9);
         var scale = (Math.Min(PanelWidth, PanelHeight) - 20) / span;
         var width = (shots.Count * (PanelWidth + Margin)) + Margin;
         var svg = new SvgCanvas(width, Top + PanelHeight + 50);
         svg.Rect(0, 0, width, Top + PanelHeight + 50, "white");
-        var title = $"cloth, front view (x-y): {_setup.ParticlesPerSide} x {_setup.ParticlesPerSide} particles, {_plan.Integrator}, dt = {Numbers.Brief(_plan.Dt)} s"
+        var title = $"{_setup.Name}, front view (x-y): {_setup.ParticlesPerSide} x {_setup.ParticlesPerSide} particles, {_plan.Integrator}, dt = {Numbers.Brief(_plan.Dt)} s"
             + (outcome.Diverged is null ? string.Empty : $", diverged at t = {Numbers.Brief(outcome.Diverged.Time)} s");
         svg.Text(width / 2, 24, title, "middle", 15, weight: "bold");
         var n = _setup.ParticlesPerSide;
@@ -67,6 +74,12 @@ internal sealed class ClothSnapshotPlot : IRunPlot
             svg.Rect(left, Top, PanelWidth, PanelHeight, "#fafafa", "#999");
             double Px(double x) => left + 10 + ((x - xMin) * scale);
             double Py(double y) => Top + 10 + ((yMax - y) * scale);
+            if (circle is { } sphere)
+            {
+                // The obstacle seen from the front, behind the mesh.
+                svg.Polyline(Enumerable.Range(0, 97).Select(k => (Px(sphere.X + (sphere.Radius * Math.Cos(k * Math.PI / 48))), Py(sphere.Y + (sphere.Radius * Math.Sin(k * Math.PI / 48))))), "#999999", 1.5);
+            }
+
             var lines = Enumerable.Range(0, n).Where(i => i % stride == 0 || i == n - 1).ToArray();
             foreach (var row in lines)
             {

@@ -42,7 +42,7 @@ internal sealed class TrajectoryPlot : IRunPlot
     {
         var title = $"{_setup.Name}: {_plan.Integrator}, dt = {Numbers.Brief(_plan.Dt)} s"
             + (outcome.Diverged is null ? string.Empty : $" (diverged at t = {Numbers.Brief(outcome.Diverged.Time)} s)");
-        var chart = new LineChart(title, "t (s)", _setup is ScalarOdeSetup ? "y" : "height y (m)");
+        var chart = new LineChart(title, "t (s)", _setup is ScalarOdeSetup ? "y" : _setup.PlotAxisLabel);
         var k = 0;
         var markers = _time.Count <= 40;
         for (var s = 0; s < _setup.PlotSeries.Count; s++)

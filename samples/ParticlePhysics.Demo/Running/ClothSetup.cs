@@ -1,15 +1,24 @@
 using System;
+using System.Collections.Generic;
 
 namespace ParticlePhysics.Demo.Running;
 
 /// <summary>A cloth's rows: every particle, <c>energy</c>, <c>min_y</c> and <c>max_speed</c>; and its grid, for the snapshot plot.</summary>
-internal sealed class ClothSetup : ParticleSetup
+internal class ClothSetup : ParticleSetup
 {
-    public ClothSetup(string name, Func<ParticleWorld> build, int particlesPerSide)
-        : base(name, build, particlesPerSide * particlesPerSide, exact: null, meshColumns: true)
+    public ClothSetup(
+        string name,
+        Func<ParticleWorld> build,
+        int particlesPerSide,
+        IReadOnlyList<ExtraColumn>? extras = null,
+        Func<IStepObserver>? observer = null)
+        : base(name, build, particlesPerSide * particlesPerSide, exact: null, meshColumns: true, extras, observer)
     {
         ParticlesPerSide = particlesPerSide;
     }
+
+    /// <summary>A circle the snapshot plot draws behind the mesh (the drape's sphere seen from the front), or null.</summary>
+    public (double X, double Y, double Radius)? Circle { get; init; }
 
     /// <summary>n: the cloth has n x n particles, particle (row, col) at index row * n + col.</summary>
     public int ParticlesPerSide { get; }

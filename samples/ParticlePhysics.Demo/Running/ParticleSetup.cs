@@ -7,8 +7,8 @@ namespace ParticlePhysics.Demo.Running;
 
 /// <summary>
 /// The row layout of a particle scenario: <c>t</c>, then <c>x{i},y{i},z{i},vx{i},vy{i},vz{i}</c> per particle, then
-/// the exact values of the vertical components (<c>y{i}_exact</c>, <c>vy{i}_exact</c>) and <c>error</c> when there
-/// is an exact solution, then <c>energy</c> (kinetic + potential, J), for meshes <c>min_y</c> and <c>max_speed</c>,
+/// the exact values of the vertical components (<c>y{i}_exact</c>, <c>vy{i}_exact</c>; or of another axis) and
+/// <c>error</c> when there is an exact solution, then <c>energy</c> (kinetic + potential, J), for meshes <c>min_y</c> and <c>max_speed</c>,
 /// then the scenario's own extra columns (a pendulum's angle and period, a chain's distance from its catenary).
 /// </summary>
 internal class ParticleSetup : ScenarioSetup
@@ -16,6 +16,7 @@ internal class ParticleSetup : ScenarioSetup
     private readonly Func<ParticleWorld> _build;
     private readonly int _count;
     private readonly bool _meshColumns;
+    private readonly int _exactAxis;
     private readonly string[] _columns;
     private readonly IReadOnlyList<ExtraColumn> _extras;
     private readonly Func<IStepObserver>? _observer;
@@ -28,6 +29,7 @@ internal class ParticleSetup : ScenarioSetup
     /// <param name="meshColumns">Adds <c>min_y</c> and <c>max_speed</c> (for the cloth).</param>
     /// <param name="extras">Columns of the scenario's own, after all the others.</param>
     /// <param name="observer">Makes, for each run, what watches every step (a pendulum's period), or null.</param>
+    /// <param name="exactAxis">The axis whose exact position and velocity get columns: 0 (x), 1 (y, the default) or 2 (z).</param>
     public ParticleSetup(
         string name,
         Func<ParticleWorld> build,
@@ -35,9 +37,11 @@ internal class ParticleSetup : ScenarioSetup
         IExactSolution? exact,
         bool meshColumns = false,
         IReadOnlyList<ExtraColumn>? extras = null,
-        Func<IStepObserver>? observer = null)
+        Func<IStepObserver>? observer = null,
+        int exactAxis = 1)
         : base(name, exact)
     {
+        _exactAxis = exactAxis;
         _build = build;
         _extras = extras ?? Array.Empty<ExtraColumn>();
         _observer = observer;
@@ -54,10 +58,11 @@ internal class ParticleSetup : ScenarioSetup
 
         if (exact is not null)
         {
+            var axis = "xyz"[exactAxis];
             for (var i = 0; i < _count; i++)
             {
-                columns.Add(Invariant($"y{i}_exact"));
-                columns.Add(Invariant($"vy{i}_exact"));
+                columns.Add(Invariant($"{axis}{i}_exact"));
+                columns.Add(Invariant($"v{axis}{i}_exact"));
             }
 
             columns.Add("error");
@@ -112,8 +117,8 @@ internal class ParticleSetup : ScenarioSetup
         var k = 1 + (6 * _count);
         for (var i = 0; i < _count; i++)
         {
-            row[k++] = exact[(3 * i) + 1];
-            row[k++] = exact[(3 * _count) + (3 * i) + 1];
+            row[k++] = exact[(3 * i) + _exactAxis];
+            row[k++] = exact[(3 * _count) + (3 * i) + _exactAxis];
         }
     }
 
@@ -149,8 +154,8 @@ internal class ParticleSetup : ScenarioSetup
             Exact.ExactState(time, _exact);
             for (var i = 0; i < _count; i++)
             {
-                row[k++] = _exact[(3 * i) + 1];
-                row[k++] = _exact[(3 * _count) + (3 * i) + 1];
+                row[k++] = _exact[(3 * i) + _exactAxis];
+                row[k++] = _exact[(3 * _count) + (3 * i) + _exactAxis];
             }
 
             row[k++] = MaxAbsDifference(state, _exact);

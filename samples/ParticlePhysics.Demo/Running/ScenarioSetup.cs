@@ -37,6 +37,15 @@ internal abstract class ScenarioSetup
     /// <summary>The curves of a trajectory plot: a computed column and its exact counterpart (or null).</summary>
     public abstract IReadOnlyList<(string Column, string? Exact)> PlotSeries { get; }
 
+    /// <summary>The vertical axis of a trajectory plot.</summary>
+    public virtual string PlotAxisLabel => "height y (m)";
+
+    /// <summary>
+    /// Lines the table format prints after its summary line, about the last run of <see cref="CreateSimulation"/> (the
+    /// bouncing ball's apexes against the exact ones); none by default.
+    /// </summary>
+    public virtual IReadOnlyList<string> SummaryDetails => Array.Empty<string>();
+
     /// <summary>The exact value of <paramref name="exactColumn"/> (one of the <c>..._exact</c> columns) at any time, for smooth plots.</summary>
     public double ExactValue(string exactColumn, double time)
     {

@@ -63,7 +63,8 @@ internal sealed class ClothDefinition : ScenarioDefinition
         };
     }
 
-    private static int ParticlesPerSide(ClothScenario scenario)
+    /// <summary>n = S / r + 1, or a usage error naming --size and --resolution.</summary>
+    internal static int ParticlesPerSide(ClothScenario scenario)
     {
         try
         {

@@ -8,7 +8,7 @@ using ParticlePhysics.Numerics;
 namespace ParticlePhysics.Snapshots;
 
 /// <summary>
-/// The whole dynamic state of a <see cref="ParticleWorld"/> (time, positions, velocities, masses, pins) and of its
+/// The whole dynamic state of a <see cref="ParticleWorld"/> (time, positions, velocities, masses, pins, radii) and of its
 /// integrator (<see cref="IStatefulIntegrator"/>), captured and restored bit for bit: for save games, replays and
 /// rollback. It does not hold the force generators: they are the scene's configuration, which the host rebuilds (the
 /// same builder code) before restoring.
@@ -20,7 +20,7 @@ namespace ParticlePhysics.Snapshots;
 /// <code>
 /// offset  size  field
 ///  0       4    magic "PPSN"
-///  4       2    format version (1)
+///  4       2    format version (2; version 1, without radii, is still read: its particles get radius 0)
 ///  6       2    flags (0)
 ///  8       4    particle count n
 /// 12       4    integrator name length b, in UTF-8 bytes (0: captured without an integrator)
@@ -30,6 +30,7 @@ namespace ParticlePhysics.Snapshots;
 ///          48 n state vector [positions | velocities], 6 doubles per particle
 ///          8 n  masses
 ///          n    pinned flags (0 or 1)
+///          8 n  radii (version 2 on)
 ///          8 m  integrator state
 ///          4    CRC-32 of every byte before it
 /// </code>
@@ -40,7 +41,10 @@ namespace ParticlePhysics.Snapshots;
 public sealed class SimulationSnapshot
 {
     /// <summary>The format version that <see cref="WriteTo"/> writes and <see cref="ReadFrom"/> reads.</summary>
-    public const int FormatVersion = 1;
+    public const int FormatVersion = 2;
+
+    /// <summary>The oldest format version that <see cref="ReadFrom"/> still reads (1: without radii).</summary>
+    public const int OldestReadableVersion = 1;
 
     /// <summary>
     /// The largest integrator state, in doubles, that the format accepts for <paramref name="particleCount"/>
@@ -58,6 +62,7 @@ public sealed class SimulationSnapshot
     private double[] _state = Array.Empty<double>();
     private double[] _masses = Array.Empty<double>();
     private bool[] _pinned = Array.Empty<bool>();
+    private double[] _radii = Array.Empty<double>();
     private double[] _integratorState = Array.Empty<double>();
 
     private SimulationSnapshot()
@@ -78,6 +83,9 @@ public sealed class SimulationSnapshot
 
     /// <summary>The pinned flags, one per particle.</summary>
     public ReadOnlySpan<bool> Pinned => _pinned;
+
+    /// <summary>The radii, one per particle (0 for a snapshot read from format version 1).</summary>
+    public ReadOnlySpan<double> Radii => _radii;
 
     /// <summary>The <see cref="IIntegrator.Name"/> of the integrator captured with the system, or null.</summary>
     public string? IntegratorName { get; private set; }
@@ -125,10 +133,12 @@ public sealed class SimulationSnapshot
         var state = Resize(_state, 6 * n);
         var masses = Resize(_masses, n);
         var pinned = _pinned.Length == n ? _pinned : new bool[n];
+        var radii = Resize(_radii, n);
         var integratorState = Resize(_integratorState, m);
         stateful?.WriteState(integratorState);
         system.State.CopyTo(state);
         system.Masses.CopyTo(masses);
+        system.Radii.CopyTo(radii);
         for (var i = 0; i < n; i++)
         {
             pinned[i] = system.IsPinned(i);
@@ -137,6 +147,7 @@ public sealed class SimulationSnapshot
         _state = state;
         _masses = masses;
         _pinned = pinned;
+        _radii = radii;
         _integratorState = integratorState;
         IntegratorName = name;
         Time = system.Time;
@@ -197,6 +208,7 @@ public sealed class SimulationSnapshot
         for (var i = 0; i < _masses.Length; i++)
         {
             system.SetMass(i, _masses[i]);
+            system.SetRadius(i, _radii[i]);
             if (_pinned[i])
             {
                 system.Pin(i);
@@ -213,7 +225,7 @@ public sealed class SimulationSnapshot
 
     /// <summary>The number of bytes <see cref="WriteTo"/> writes.</summary>
     public int SerializedLength =>
-        HeaderSize + Encoding.UTF8.GetByteCount(IntegratorName ?? string.Empty) + (57 * ParticleCount)
+        HeaderSize + Encoding.UTF8.GetByteCount(IntegratorName ?? string.Empty) + (BytesPerParticle(FormatVersion) * ParticleCount)
         + (8 * _integratorState.Length) + ChecksumSize;
 
     /// <summary>Writes the snapshot to <paramref name="stream"/> in the binary format described on the class.</summary>
@@ -241,6 +253,7 @@ public sealed class SimulationSnapshot
             span[o++] = _pinned[i] ? (byte)1 : (byte)0;
         }
 
+        o = WriteDoubles(span, o, _radii);
         o = WriteDoubles(span, o, _integratorState);
         BinaryPrimitives.WriteUInt32LittleEndian(span.Slice(o), Crc32.Compute(span.Slice(0, o)));
         stream.Write(bytes, 0, bytes.Length);
@@ -267,11 +280,11 @@ public sealed class SimulationSnapshot
         }
 
         int version = BinaryPrimitives.ReadUInt16LittleEndian(header.AsSpan(4));
-        if (version != FormatVersion)
+        if (version < OldestReadableVersion || version > FormatVersion)
         {
             throw new InvalidDataException(version > FormatVersion
-                ? $"The snapshot has format version {version}, newer than this library reads ({FormatVersion}): update the library."
-                : $"The snapshot has format version {version}, which does not exist (this library reads {FormatVersion}).");
+                ? $"The snapshot has format version {version}, newer than this library reads ({OldestReadableVersion} to {FormatVersion}): update the library."
+                : $"The snapshot has format version {version}, which does not exist (this library reads {OldestReadableVersion} to {FormatVersion}).");
         }
 
         int flags = BinaryPrimitives.ReadUInt16LittleEndian(header.AsSpan(6));
@@ -280,7 +293,7 @@ public sealed class SimulationSnapshot
         var m = BinaryPrimitives.ReadInt32LittleEndian(header.AsSpan(16));
         if (flags != 0)
         {
-            throw new InvalidDataException($"The snapshot's flags are 0x{flags:X4}; version {FormatVersion} defines none.");
+            throw new InvalidDataException($"The snapshot's flags are 0x{flags:X4}; version {version} defines none.");
         }
 
         if (n < 0 || n > ParticleWorld.MaxParticles)
@@ -301,7 +314,7 @@ public sealed class SimulationSnapshot
                 $"The snapshot's integrator state length {m} is impossible (0 to {MaxIntegratorStateLength(n)} allowed).");
         }
 
-        var total = HeaderSize + nameLength + (57 * n) + (8 * m) + ChecksumSize;
+        var total = HeaderSize + nameLength + (BytesPerParticle(version) * n) + (8 * m) + ChecksumSize;
         if (stream.CanSeek && stream.Length - stream.Position < total - HeaderSize)
         {
             // Say so before allocating room for a count that a damaged header may have inflated.
@@ -322,10 +335,13 @@ public sealed class SimulationSnapshot
                 $"The snapshot is corrupted: its CRC-32 is 0x{stored:X8} but its bytes give 0x{computed:X8}.");
         }
 
-        return Decode(span, n, nameLength, m);
+        return Decode(span, version, n, nameLength, m);
     }
 
-    private static SimulationSnapshot Decode(ReadOnlySpan<byte> span, int n, int nameLength, int m)
+    /// <summary>The bytes per particle of a format version: state 48, mass 8, pinned flag 1, and from version 2 a radius 8.</summary>
+    private static int BytesPerParticle(int version) => version >= 2 ? 65 : 57;
+
+    private static SimulationSnapshot Decode(ReadOnlySpan<byte> span, int version, int n, int nameLength, int m)
     {
         var snapshot = new SimulationSnapshot
         {
@@ -333,6 +349,7 @@ public sealed class SimulationSnapshot
             _state = new double[6 * n],
             _masses = new double[n],
             _pinned = new bool[n],
+            _radii = new double[n],
             _integratorState = new double[m],
         };
         if (!DoubleChecks.IsFinite(snapshot.Time))
@@ -367,6 +384,11 @@ public sealed class SimulationSnapshot
             snapshot._pinned[i] = flag == 1;
         }
 
+        if (version >= 2)
+        {
+            o = ReadDoubles(span, o, snapshot._radii);
+        }
+
         ReadDoubles(span, o, snapshot._integratorState);
         var bad = DoubleChecks.FirstNonFinite(snapshot._state);
         if (bad >= 0)
@@ -383,6 +405,13 @@ public sealed class SimulationSnapshot
             {
                 throw new InvalidDataException(
                     $"Particle {i}'s mass is {Guard.Format(mass)}; it must be a positive finite number.");
+            }
+
+            var radius = snapshot._radii[i];
+            if (!(radius >= 0.0) || !DoubleChecks.IsFinite(radius))
+            {
+                throw new InvalidDataException(
+                    $"Particle {i}'s radius is {Guard.Format(radius)}; it must be a finite number >= 0.");
             }
         }
 

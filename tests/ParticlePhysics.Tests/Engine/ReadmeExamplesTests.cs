@@ -4,6 +4,7 @@ using System.Runtime.CompilerServices;
 using System.Text.RegularExpressions;
 using ParticlePhysics.Cloth;
 using ParticlePhysics.Constraints;
+using ParticlePhysics.Contacts;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Integrators;
 
@@ -107,8 +108,43 @@ public partial class ReadmeExamplesTests
         Assert.Equal(0, system.GetVelocity(0).Y);
     }
 
+    [Fact]
+    public void Contacts_snippet_bounces_the_ball_at_the_exact_time()
+    {
+        var saved = Console.Out;
+        using var printed = new StringWriter(System.Globalization.CultureInfo.InvariantCulture);
+        Console.SetOut(printed);
+
+        // snippet: contacts
+        var world = new ParticleWorld();
+        int ball = world.AddParticle(new Vector3d(0, 1, 0), mass: 1.0);
+        world.SetRadius(ball, 0.1);
+        world.AddForce(new Gravity());
+
+        var contacts = new ContactSet();                  // a stage after the integrator's step
+        contacts.Add(PlaneObstacle.Ground(restitution: 0.8, friction: 0.3));
+        contacts.Add(new SphereObstacle(new Vector3d(2, 0.5, 0), radius: 0.5));
+        world.AddConstraints(contacts);
+
+        var rk4 = new RungeKutta4();
+        for (int step = 0; step < 1000; step++)
+        {
+            world.Step(rk4, 0.001);
+            foreach (ContactImpact impact in contacts.Impacts)  // resolved at their time within the step
+            {
+                Console.WriteLine(FormattableString.Invariant($"impact at t = {impact.Time:F6} s, {impact.NormalSpeed:F4} m/s"));
+            }
+        }
+        // impact at t = 0.428353 s, 4.2021 m/s: t1 = sqrt(2 (h - r) / g), u1 = g t1
+        // end snippet
+
+        Console.SetOut(saved);
+        var line = Assert.Single(printed.ToString().Split('\n', StringSplitOptions.RemoveEmptyEntries));
+        Assert.Equal(FormattableString.Invariant($"impact at t = {Math.Sqrt(2 * 0.9 / 9.81):F6} s, {Math.Sqrt(2 * 9.81 * 0.9):F4} m/s"), line.TrimEnd());
+    }
+
     [Theory]
-    [InlineData("README.md", 4)]
+    [InlineData("README.md", 5)]
     [InlineData("src/ParticlePhysics/README.md", 1)]   // the NuGet package's README
     public void Every_readme_snippet_is_the_code_the_tests_run(string readmePath, int snippets)
     {

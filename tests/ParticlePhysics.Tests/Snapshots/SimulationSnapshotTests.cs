@@ -194,7 +194,7 @@ public class SimulationSnapshotTests
     {
         var bytes = Serialized(ClothSystem(), null);
         AssertInvalid(WithCrc(bytes, b => b[0] = (byte)'X'), "PPSN");
-        AssertInvalid(WithCrc(bytes, b => b[4] = 2), "version 2, newer");
+        AssertInvalid(WithCrc(bytes, b => b[4] = 3), "version 3, newer");
         AssertInvalid(WithCrc(bytes, b => b[4] = 0), "version 0");
         AssertInvalid(WithCrc(bytes, b => b[11] = 0x80), "particle count -");
         AssertInvalid(WithCrc(bytes, b => b[8]++), "truncated");

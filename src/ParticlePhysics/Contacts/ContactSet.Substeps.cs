@@ -1,0 +1,276 @@
+using System;
+using ParticlePhysics.Numerics;
+
+namespace ParticlePhysics.Contacts;
+
+/// <summary>
+/// The contact set inside the position-based integrator's substeps, after Macklin et al.'s "Small Steps" and Müller et
+/// al.'s "Detailed Rigid Body Simulation with XPBD": contacts are inequality constraints of zero compliance.
+/// </summary>
+/// <remarks>
+/// <para>
+/// <see cref="Project"/>, once per substep of length h after the prediction: a particle whose predicted move from
+/// outside touched the obstacle grown by its radius (found by the same safe steps along the straight move, so that
+/// nothing tunnels) is held by the tangent plane at the point where it touched: C = (x - x_touch) . n &gt;= 0; one that
+/// was already inside moves by -C n with C = phi(x) - r and n the gradient. Static friction: if the tangential move relative to the obstacle is shorter than mu times
+/// the normal correction, it is undone. Two overlapping particles are pushed apart along their line of centres, each by
+/// its share w_i / (w_a + w_b) of the overlap.
+/// </para>
+/// <para>
+/// <see cref="SolveVelocities"/>, after the velocities are taken from the change of positions: dynamic friction takes
+/// min(mu |C| / h, |v_t|) off the relative tangential velocity, and the normal relative velocity becomes -e v_n, v_n
+/// being the normal velocity before the solve (that of the prediction); 0 when e |v_n| is below
+/// <see cref="RestingSpeed"/>, and 0 when it was not approaching.
+/// </para>
+/// <para>
+/// What the two calls expect of the context, as the xpbd integrator makes it: in <see cref="Project"/>, the start is
+/// the substep's start (x_prev, v_prev), the positions and velocities are the prediction's (x_prev + h v, v); in
+/// <see cref="SolveVelocities"/>, the velocities are (x - x_prev) / h. Both must be called for every substep, in that
+/// order: the velocity pass uses the contacts the position pass found. Pass the radii (the world's
+/// <see cref="ParticleWorld.Radii"/>): a context without them makes every particle a point.
+/// </para>
+/// </remarks>
+public sealed partial class ContactSet
+{
+    // The contacts of the last Project, for SolveVelocities: kind (obstacle index >= 0, or -1 for a pair), particles,
+    // normal, normal correction |C| and normal velocity before the solve.
+    private int[] _substepKind = Array.Empty<int>();
+    private int[] _substepFirst = Array.Empty<int>();
+    private int[] _substepSecond = Array.Empty<int>();
+    private Vector3d[] _substepNormal = Array.Empty<Vector3d>();
+    private double[] _substepDepth = Array.Empty<double>();
+    private double[] _substepApproach = Array.Empty<double>();
+    private int _substepCount;
+    private double _substepEnd;
+
+    /// <inheritdoc />
+    public void Project(in ConstraintContext context)
+    {
+        var n = context.Count;
+        EnsureCapacity(n);
+        _substepCount = 0;
+        _impactCount = 0;
+        var x = context.Positions;
+        var v = context.Velocities;
+        var previous = context.StartPositions.ForReading();
+        var inverseMasses = context.InverseMasses.ForReading();
+        var radii = context.Radii.ForReading();
+        var h = context.Dt;
+        var end = context.Time + h;
+        _substepEnd = end;
+        if (ParticleCollisions)
+        {
+            var pairs = FindRestingPairs(n, x, radii);
+            _pairCount = pairs;
+            var first = _restingGrid.First.ForReading();
+            var second = _restingGrid.Second.ForReading();
+            for (var p = 0; p < pairs; p++)
+            {
+                var a = first[p];
+                var b = second[p];
+                var depth = SeparatePositions(in context, a, b, radii, out var normal);
+                if (depth > 0.0)
+                {
+                    AddSubstepContact(-1, a, b, normal, depth, Vector3d.Dot(Read(v, a) - Read(v, b), normal));
+                }
+            }
+        }
+
+        if (_obstacles.Count == 0)
+        {
+            return;
+        }
+
+        for (var i = 0; i < n; i++)
+        {
+            if (inverseMasses[i] == 0.0)
+            {
+                continue;
+            }
+
+            var radius = Radius(radii, i);
+            for (var k = 0; k < _obstacles.Count; k++)
+            {
+                var obstacle = _obstacles[k];
+                var position = Read(x, i);
+                var q = position - obstacle.OffsetAt(end);
+                var gap = obstacle.Distance(q.X, q.Y, q.Z, out var nx, out var ny, out var nz) - radius;
+                var normal = new Vector3d(nx, ny, nz);
+                var start = Read(previous, i);
+                var p0 = start - obstacle.OffsetAt(context.Time);
+                var startedOutside = obstacle.Distance(p0.X, p0.Y, p0.Z, out _, out _, out _) - radius >= 0.0;
+                if (!(gap < 0.0) || startedOutside)
+                {
+                    // It came from outside: the constraint is the tangent plane where its straight move touched (a thin
+                    // wall crossed, or entered deeper than its middle, would otherwise push it out the far side).
+                    if (Crossed(obstacle, start, position, radius, context.Time, h, out var touch, out var entry))
+                    {
+                        normal = entry;
+                        gap = Vector3d.Dot(position - touch, normal);
+                    }
+
+                    if (!(gap < 0.0))
+                    {
+                        continue;
+                    }
+                }
+
+                position -= gap * normal;
+                var depth = -gap;
+
+                // Static friction: undo the tangential move relative to the obstacle when it is within mu |C|.
+                var move = position - Read(previous, i) - (h * obstacle.Velocity);
+                var tangential = move - (Vector3d.Dot(move, normal) * normal);
+                if (tangential.Length < obstacle.Friction * depth)
+                {
+                    position -= tangential;
+                }
+
+                Write(x, i, position);
+                AddSubstepContact(k, i, -1, normal, depth, Vector3d.Dot(Read(v, i) - obstacle.Velocity, normal));
+            }
+        }
+    }
+
+    /// <inheritdoc />
+    public void SolveVelocities(in ConstraintContext context)
+    {
+        var v = context.Velocities;
+        var inverseMasses = context.InverseMasses.ForReading();
+        var h = context.Dt;
+        for (var c = 0; c < _substepCount; c++)
+        {
+            var k = _substepKind[c];
+            var normal = _substepNormal[c];
+            var a = _substepFirst[c];
+            double e, mu, wa, wb;
+            Vector3d relative;
+            if (k >= 0)
+            {
+                var obstacle = _obstacles[k];
+                e = obstacle.Restitution;
+                mu = obstacle.Friction;
+                wa = 1.0;
+                wb = 0.0;
+                relative = Read(v, a) - obstacle.Velocity;
+            }
+            else
+            {
+                e = _particleRestitution;
+                mu = _particleFriction;
+                wa = inverseMasses[a];
+                wb = inverseMasses[_substepSecond[c]];
+                relative = Read(v, a) - Read(v, _substepSecond[c]);
+            }
+
+            var w = wa + wb;
+            if (w == 0.0)
+            {
+                continue;
+            }
+
+            // The change of relative velocity, shared out as impulse / mass.
+            var vn = Vector3d.Dot(relative, normal);
+            var tangent = relative - (vn * normal);
+            var speed = tangent.Length;
+            var change = Vector3d.Zero;
+            if (speed > 0.0)
+            {
+                change -= (Math.Min(mu * _substepDepth[c] / h, speed) / speed) * tangent;
+            }
+
+            var approach = _substepApproach[c];
+            var rebound = approach < 0.0 && e * -approach > _restingSpeed ? -e * approach : 0.0;
+            change += (rebound - vn) * normal;
+            Write(v, a, Read(v, a) + ((wa / w) * change));
+            if (k < 0)
+            {
+                var b = _substepSecond[c];
+                Write(v, b, Read(v, b) - ((wb / w) * change));
+            }
+        }
+    }
+
+    /// <summary>Pushes two overlapping particles apart by their shares of the overlap; returns it (0 if none) and the normal.</summary>
+    private static double SeparatePositions(in ConstraintContext context, int a, int b, Span<double> radii, out Vector3d normal)
+    {
+        var inverseMasses = context.InverseMasses.ForReading();
+        var wa = inverseMasses[a];
+        var wb = inverseMasses[b];
+        var x = context.Positions;
+        var d = Read(x, a) - Read(x, b);
+        var distance = SphereObstacle.PointDistance(d.X, d.Y, d.Z, out var nx, out var ny, out var nz);
+        normal = new Vector3d(nx, ny, nz);
+        var overlap = Radius(radii, a) + Radius(radii, b) - distance;
+        if (!(overlap > 0.0) || wa + wb == 0.0)
+        {
+            return 0.0;
+        }
+
+        Write(x, a, Read(x, a) + ((overlap * wa / (wa + wb)) * normal));
+        Write(x, b, Read(x, b) - ((overlap * wb / (wa + wb)) * normal));
+        return overlap;
+    }
+
+    /// <summary>
+    /// Whether the straight move from <paramref name="start"/> to <paramref name="end"/> over the substep touches the
+    /// obstacle: then the centre where it touches and the normal there.
+    /// </summary>
+    private static bool Crossed(
+        Obstacle obstacle, Vector3d start, Vector3d end, double radius, double time, double h, out Vector3d touch, out Vector3d normal)
+    {
+        touch = start;
+        normal = Vector3d.Zero;
+        var velocity = ((end - start) / h) - obstacle.Velocity;
+        var s = 0.0;
+        for (var iteration = 0; iteration < ContactSearch.MaxIterations; iteration++)
+        {
+            var p = start + (s * (velocity + obstacle.Velocity));
+            var q = p - obstacle.OffsetAt(time + s);
+            var gap = obstacle.Distance(q.X, q.Y, q.Z, out var nx, out var ny, out var nz) - radius;
+            var rate = (velocity.X * nx) + (velocity.Y * ny) + (velocity.Z * nz);
+            if (gap <= ContactSearch.ToleranceAt(Math.Abs(q.X) + Math.Abs(q.Y) + Math.Abs(q.Z)) && rate < 0.0)
+            {
+                touch = p;
+                normal = new Vector3d(nx, ny, nz);
+                return s < h;
+            }
+
+            s += ContactSearch.SafeStep(gap, rate, 0.0);
+            if (!(s < h))
+            {
+                return false;
+            }
+        }
+
+        return false;
+    }
+
+    private void AddSubstepContact(int kind, int first, int second, Vector3d normal, double depth, double approach)
+    {
+        if (_substepCount == _substepKind.Length)
+        {
+            var capacity = Math.Max(64, 2 * _substepKind.Length);
+            Array.Resize(ref _substepKind, capacity);
+            Array.Resize(ref _substepFirst, capacity);
+            Array.Resize(ref _substepSecond, capacity);
+            Array.Resize(ref _substepNormal, capacity);
+            Array.Resize(ref _substepDepth, capacity);
+            Array.Resize(ref _substepApproach, capacity);
+        }
+
+        // The log of impacts: under substeps, those of the last substep (its end as their time), approaching or resting.
+        var e = kind >= 0 ? _obstacles[kind].Restitution : _particleRestitution;
+        var u = Math.Max(-approach, 0.0);
+        Record(_substepEnd, first, kind >= 0 ? kind : second, kind >= 0, u, !(e * u > _restingSpeed));
+        _impactCount--; // Record counted it; the count below is the substep's contacts
+        _substepKind[_substepCount] = kind;
+        _substepFirst[_substepCount] = first;
+        _substepSecond[_substepCount] = second;
+        _substepNormal[_substepCount] = normal;
+        _substepDepth[_substepCount] = depth;
+        _substepApproach[_substepCount] = approach;
+        _substepCount++;
+        _impactCount++;
+    }
+}

@@ -1,0 +1,158 @@
+using System;
+using System.Linq;
+using ParticlePhysics.Contacts;
+using ParticlePhysics.Forces;
+using ParticlePhysics.Integrators;
+using ParticlePhysics.Scenarios;
+using ParticlePhysics.Tests.Support;
+
+namespace ParticlePhysics.Tests.Contacts;
+
+/// <summary>Two particles meeting head-on against the exact v1', v2' and contact time; momentum to rounding.</summary>
+public class ParticleCollisionTests
+{
+    [Theory]
+    [InlineData(1.0, 1.0, 1.0, 1.0, -1.0)]
+    [InlineData(1.0, 3.0, 0.5, 1.0, -1.0)]
+    [InlineData(2.0, 0.5, 0.0, 1.0, -1.0)]
+    [InlineData(1.0, 1000.0, 0.9, 1.0, -1.0)]
+    [InlineData(0.001, 1.0, 0.3, 3.0, 0.5)]
+    [InlineData(5.0, 5.0, 0.75, 0.7, -2.3)]
+    public void Two_particles_leave_with_the_exact_velocities_at_the_exact_time(double m1, double m2, double e, double v1, double v2)
+    {
+        var scenario = new CollisionScenario { Mass1 = m1, Mass2 = m2, Restitution = e, Velocity1 = v1, Velocity2 = v2 };
+        var world = scenario.Build();
+        var contacts = world.Constraints.OfType<ContactSet>().Single();
+        var momentum = world.TotalMomentum();
+        var rk4 = new RungeKutta4();
+        var impact = double.NaN;
+        for (var step = 0; step < 2000; step++)
+        {
+            world.Step(rk4, 0.001);
+            foreach (var record in contacts.Impacts)
+            {
+                impact = double.IsNaN(impact) ? record.Time : impact;
+            }
+
+            Assert.True((world.TotalMomentum() - momentum).Length < 1e-12 * (m1 + m2), $"momentum at step {step}");
+        }
+
+        Assert.Equal(scenario.ContactTime, impact, 12);
+        Assert.Equal(scenario.FinalVelocity1, world.GetVelocity(0).X, 12);
+        Assert.Equal(scenario.FinalVelocity2, world.GetVelocity(1).X, 12);
+        var exact = new double[12];
+        scenario.ExactState(2.0, exact);
+        Assert.True(StateMetrics.MaxAbsError(world.State, exact) < 1e-11, $"error {StateMetrics.MaxAbsError(world.State, exact)}");
+    }
+
+    [Fact]
+    public void With_gravity_both_fall_alike_and_the_collision_is_unchanged()
+    {
+        var scenario = new CollisionScenario { Gravity = 9.81, Mass2 = 2, Restitution = 0.6 };
+        var world = scenario.Build();
+        FrictionTests.StepFor(world, "velocity-verlet", 0.001, 2.0);
+        var exact = new double[12];
+        scenario.ExactState(2.0, exact);
+        Assert.True(StateMetrics.MaxAbsError(world.State, exact) < 1e-10, $"error {StateMetrics.MaxAbsError(world.State, exact)}");
+    }
+
+    [Fact]
+    public void An_oblique_impact_acts_along_the_line_of_centres_and_friction_is_bounded_by_mu_1_plus_e_u()
+    {
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(-1, 0.1, 0), new Vector3d(2, 0, 0), 1);
+        world.AddParticle(new Vector3d(0, 0, 0), 3);
+        world.SetRadius(0, 0.1);
+        world.SetRadius(1, 0.1);
+        var contacts = new ContactSet { ParticleCollisions = true, ParticleRestitution = 0.5, ParticleFriction = 0.1 };
+        world.AddConstraints(contacts);
+        var momentum = world.TotalMomentum();
+        FrictionTests.StepFor(world, "rk4", 0.01, 1.0);
+        Assert.True((world.TotalMomentum() - momentum).Length < 1e-12);
+
+        // At contact the centres are 0.2 apart with an offset of 0.1 in y: n = (-sqrt(3)/2, 1/2, 0).
+        var n = new Vector3d(-Math.Sqrt(3) / 2, 0.5, 0);
+        var relative = world.GetVelocity(0) - world.GetVelocity(1);
+        var u = -Vector3d.Dot(new Vector3d(2, 0, 0), n);
+        Assert.Equal(0.5 * u, Vector3d.Dot(relative, n), 12);
+        var tangentBefore = new Vector3d(2, 0, 0) + (u * n);
+        var tangentAfter = relative - (Vector3d.Dot(relative, n) * n);
+        Assert.Equal(tangentBefore.Length - (0.1 * 1.5 * u), tangentAfter.Length, 12);
+    }
+
+    [Fact]
+    public void A_fast_particle_never_passes_through_another()
+    {
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(-10, 0, 0), new Vector3d(1000, 0, 0), 1);
+        world.AddParticle(Vector3d.Zero, 1);
+        world.SetRadius(0, 0.01);
+        world.SetRadius(1, 0.01);
+        world.AddConstraints(new ContactSet { ParticleCollisions = true, ParticleRestitution = 1 });
+        FrictionTests.StepFor(world, "rk4", 1.0 / 60.0, 0.1);
+        Assert.Equal(0.0, world.GetVelocity(0).X, 9);
+        Assert.Equal(1000.0, world.GetVelocity(1).X, 9);
+    }
+
+    [Fact]
+    public void A_pinned_particle_is_an_immovable_sphere()
+    {
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(-1, 0, 0), new Vector3d(1, 0, 0), 1);
+        world.AddParticle(Vector3d.Zero, 1);
+        world.Pin(1);
+        world.SetRadius(0, 0.1);
+        world.SetRadius(1, 0.2);
+        world.AddConstraints(new ContactSet { ParticleCollisions = true, ParticleRestitution = 0.8 });
+        FrictionTests.StepFor(world, "rk4", 0.01, 2.0);
+        Assert.Equal(-0.8, world.GetVelocity(0).X, 12);
+        Assert.Equal(Vector3d.Zero, world.GetPosition(1));
+        Assert.Equal(-0.3 - (0.8 * (2.0 - 0.7)), world.GetPosition(0).X, 12);
+    }
+
+    [Fact]
+    public void A_filter_keeps_the_pairs_it_refuses_from_colliding()
+    {
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(-1, 0, 0), new Vector3d(1, 0, 0), 1);
+        world.AddParticle(new Vector3d(1, 0, 0), new Vector3d(-1, 0, 0), 1);
+        world.SetRadius(0, 0.1);
+        world.SetRadius(1, 0.1);
+        var filter = new ExcludedPairs();
+        filter.Add(1, 0);
+        world.AddConstraints(new ContactSet { ParticleCollisions = true, PairFilter = filter });
+        FrictionTests.StepFor(world, "rk4", 0.01, 2.0);
+        Assert.Equal(1.0, world.GetPosition(0).X, 12);
+        Assert.Equal(1, filter.Count);
+        Assert.False(filter.MayCollide(0, 1));
+    }
+
+    [Fact]
+    public void Excluded_pairs_from_a_spring_network_are_exactly_its_springs()
+    {
+        var cloth = new ParticlePhysics.Cloth.ClothBuilder { Rows = 4, Columns = 5 }.Build();
+        var filter = ExcludedPairs.FromSprings(cloth.Springs);
+        var ends = Enumerable.Range(0, cloth.Springs.Count).Select(cloth.Springs.GetEnds)
+            .Select(e => (Math.Min(e.First, e.Second), Math.Max(e.First, e.Second))).ToHashSet();
+        Assert.Equal(ends.Count, filter.Count);
+        for (var i = 0; i < cloth.System.Count; i++)
+        {
+            for (var j = i + 1; j < cloth.System.Count; j++)
+            {
+                Assert.Equal(!ends.Contains((i, j)), filter.MayCollide(i, j));
+            }
+        }
+    }
+
+    [Fact]
+    public void Points_without_a_radius_pass_each_other()
+    {
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(-1, 0, 0), new Vector3d(1, 0, 0), 1);
+        world.AddParticle(new Vector3d(1, 0.001, 0), new Vector3d(-1, 0, 0), 1);
+        world.AddForce(new LinearDrag(0));
+        world.AddConstraints(new ContactSet { ParticleCollisions = true });
+        FrictionTests.StepFor(world, "rk4", 0.01, 2.0);
+        Assert.Equal(1.0, world.GetPosition(0).X, 12);
+    }
+}
