@@ -19,7 +19,8 @@ namespace ParticlePhysics.Benchmarks;
 /// library step allocates nothing; exits 1 if not.</item>
 /// <item><c>stability [--n 64] [--integrators a,b] [--write] [--verbose]</c>: the largest stable dt of each
 /// integrator (<c>--dt X</c>: one trial at X instead of the search).</item>
-/// <item><c>profile [--n 128] [--seconds 20]</c>: RK4 cloth steps in a loop, for <c>perf record</c>.</item>
+/// <item><c>profile [--n 128] [--seconds 20] [--integrator xpbd [--steps N] [--runner 2]]</c>: RK4 cloth steps (or xpbd
+/// frames) in a loop, for <c>perf record</c> or callgrind.</item>
 /// <item><c>--quick</c> (before BenchmarkDotNet's arguments): small cloths, for CI.</item>
 /// </list>
 /// After a BenchmarkDotNet run it exits 1 if any benchmark failed or has no result (NA).
@@ -164,6 +165,11 @@ internal static class Program
     {
         var n = int.Parse(Option(args, "--n") ?? "128", CultureInfo.InvariantCulture);
         var seconds = double.Parse(Option(args, "--seconds") ?? "20", CultureInfo.InvariantCulture);
+        if (Option(args, "--integrator") is "xpbd")
+        {
+            return RunXpbdProfile(n, seconds, Option(args, "--steps"), Option(args, "--runner"));
+        }
+
         var cloth = new ClothFixture(n);
         var rk4 = new RungeKutta4();
         var clock = Stopwatch.StartNew();
@@ -183,6 +189,38 @@ internal static class Program
         Console.WriteLine(string.Create(
             CultureInfo.InvariantCulture,
             $"n = {n}: {steps} RK4 steps, {perStep * 1e6:F1} us per step, {perStep * 1e9 / (4.0 * cloth.SpringCount):F2} ns per spring evaluation"));
+        return 0;
+    }
+
+    /// <summary>
+    /// xpbd frames of 1/60 s (10 substeps) from rest, a reset every simulated second: for <c>--seconds</c> of wall time
+    /// (for perf), or exactly <c>--steps</c> frames (for callgrind: two run lengths, the difference is the frames'
+    /// instructions), then the checksum that <c>cloth_xpbd --run</c> prints after as many frames from rest.
+    /// </summary>
+    private static int RunXpbdProfile(int n, double seconds, string? steps, string? runnerThreads)
+    {
+        var cloth = new XpbdCloth(n);
+        using var runner = runnerThreads is null ? null : new Parallel.WorkerThreadRunner(int.Parse(runnerThreads, CultureInfo.InvariantCulture));
+        cloth.Runner = runner;
+        var fixedSteps = steps is null ? -1L : long.Parse(steps, CultureInfo.InvariantCulture);
+        var clock = Stopwatch.StartNew();
+        long frames = 0;
+        cloth.Reset();
+        while (fixedSteps >= 0 ? frames < fixedSteps : clock.Elapsed.TotalSeconds < seconds)
+        {
+            if (frames > 0 && frames % XpbdCloth.StepsPerSecond == 0)
+            {
+                cloth.Reset();
+            }
+
+            cloth.Run(1);
+            frames++;
+        }
+
+        var perSecond = clock.Elapsed.TotalSeconds / Math.Max(1, frames) * XpbdCloth.StepsPerSecond;
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"n = {n}: {frames} xpbd frames, {perSecond * 1e3:F2} ms per simulated second, {perSecond * 1e9 / cloth.ProjectionsPerSecond:F2} ns per projection, checksum {cloth.Checksum():R}"));
         return 0;
     }
 

@@ -75,6 +75,16 @@ internal static class Verification
                 $"n = {n}: checksum (sum of the state after {ClothFixture.StepsPerInvoke} steps) = {checksum:R}"));
         }
 
+        foreach (var n in new[] { 16, 32, 64 })
+        {
+            // The C xpbd reference prints the same sum after the same second (.ci/benchmarks compares them).
+            var xpbd = new XpbdCloth(n);
+            xpbd.SimulateSecond();
+            Console.WriteLine(string.Create(
+                CultureInfo.InvariantCulture,
+                $"n = {n}: xpbd checksum (sum of the state after {XpbdCloth.StepsPerSecond} steps of 1/60 s, {XpbdCloth.Substeps} substeps) = {xpbd.Checksum():R}"));
+        }
+
         var kernels = new SpringKernels(new ClothFixture(32));
         kernels.Library();
         var reference = kernels.Forces.ToArray();
