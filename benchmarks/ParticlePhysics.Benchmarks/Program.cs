@@ -56,7 +56,7 @@ internal static class Program
         if (quick)
         {
             // CI: a filter that silently matches nothing must not pass.
-            foreach (var type in new[] { typeof(ClothStepBenchmarks), typeof(IntegratorBenchmarks), typeof(ComparisonBenchmarks), typeof(SpringKernelBenchmarks), typeof(PackedStepBenchmarks), typeof(ContactBenchmarks) })
+            foreach (var type in new[] { typeof(ClothStepBenchmarks), typeof(IntegratorBenchmarks), typeof(ComparisonBenchmarks), typeof(SpringKernelBenchmarks), typeof(PackedStepBenchmarks), typeof(ContactBenchmarks), typeof(XpbdBenchmarks), typeof(XpbdParallelBenchmarks) })
             {
                 if (!summaries.Any(s => s.BenchmarksCases.Any(c => c.Descriptor.Type == type)))
                 {
@@ -230,13 +230,17 @@ internal static class Program
         return i >= 0 && i + 1 < args.Length ? args[i + 1] : null;
     }
 
-    private static string RepositoryRoot()
+    /// <summary>The repository's root: the first directory above <paramref name="start"/> (default: the current one) with ParticlePhysics.sln.</summary>
+    internal static string RepositoryRoot(string? start = null)
     {
-        for (var dir = new DirectoryInfo(Directory.GetCurrentDirectory()); dir is not null; dir = dir.Parent)
+        foreach (var from in new[] { start, Directory.GetCurrentDirectory() })
         {
-            if (File.Exists(Path.Combine(dir.FullName, "ParticlePhysics.sln")))
+            for (var dir = from is null ? null : new DirectoryInfo(from); dir is not null; dir = dir.Parent)
             {
-                return dir.FullName;
+                if (File.Exists(Path.Combine(dir.FullName, "ParticlePhysics.sln")))
+                {
+                    return dir.FullName;
+                }
             }
         }
 

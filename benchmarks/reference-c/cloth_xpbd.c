@@ -22,8 +22,8 @@
  * measures a falling, swinging cloth as a game sees it. Seven timed batches of about 0.2 s: the median and the best.
  * Usage: cloth_xpbd [--substeps S] n [n ...]      times each n, prints one line per n
  *        cloth_xpbd --run STEPS n                 runs STEPS steps once and prints the checksum (for callgrind)
- * The shared library built from this file (run.sh) exports xpbd_create, xpbd_reset, xpbd_step, xpbd_checksum and
- * xpbd_destroy, which the BenchmarkDotNet comparison calls in-process.
+ * The shared library built from this file (run.sh) exports xpbd_create, xpbd_reset, xpbd_step, xpbd_checksum,
+ * xpbd_state and xpbd_destroy, which the BenchmarkDotNet comparison calls in-process.
  */
 #define _POSIX_C_SOURCE 199309L
 #include <math.h>
@@ -259,6 +259,12 @@ void xpbd_step(void *cloth, double dt, int substeps, int steps)
     for (int s = 0; s < steps; s++) xpbd_step_cloth(cloth, dt, substeps);
 }
 double xpbd_checksum(void *cloth) { return checksum(cloth); }
+void xpbd_state(void *cloth, double *out) /* [x | v], 6 n^2 values */
+{
+    const Cloth *c = cloth;
+    memcpy(out, c->x, 3 * (size_t)c->particles * sizeof(double));
+    memcpy(out + 3 * (size_t)c->particles, c->v, 3 * (size_t)c->particles * sizeof(double));
+}
 int xpbd_springs(void *cloth) { return ((Cloth *)cloth)->springs; }
 int xpbd_colours(void *cloth) { return ((Cloth *)cloth)->colours; }
 void xpbd_destroy(void *cloth)
