@@ -21,6 +21,11 @@ namespace ParticlePhysics.Benchmarks;
 /// integrator (<c>--dt X</c>: one trial at X instead of the search).</item>
 /// <item><c>profile [--n 128] [--seconds 20] [--integrator xpbd [--steps N] [--runner 2]]</c>: RK4 cloth steps (or xpbd
 /// frames) in a loop, for <c>perf record</c> or callgrind.</item>
+/// <item><c>xpbd [--sizes 32,64,128,256] [--rounds 7] [--cores]</c>: a short side-by-side timing of the C xpbd and the
+/// library in one process, alternating (or, with <c>--cores</c>, one core against two), after a bit-for-bit check
+/// (<see cref="XpbdComparison"/>).</item>
+/// <item><c>quality [--n 64]</c>: each solver's cloth after 5 s against RK4 at a small dt: lowest point, stretch of
+/// the structural springs (<see cref="ClothQuality"/>; deterministic, no timing).</item>
 /// <item><c>--quick</c> (before BenchmarkDotNet's arguments): small cloths, for CI.</item>
 /// </list>
 /// After a BenchmarkDotNet run it exits 1 if any benchmark failed or has no result (NA).
@@ -42,6 +47,16 @@ internal static class Program
         if (args.Length > 0 && args[0] == "profile")
         {
             return RunProfile(args[1..]);
+        }
+
+        if (args.Length > 0 && args[0] == "xpbd")
+        {
+            return XpbdComparison.Run(args[1..]);
+        }
+
+        if (args.Length > 0 && args[0] == "quality")
+        {
+            return ClothQuality.Run(args[1..]);
         }
 
         var quick = args.Length > 0 && args[0] == "--quick";

@@ -7,8 +7,8 @@
 # The xpbd build adds -fno-math-errno: sqrt then compiles to the one instruction the JIT emits, instead of the
 # instruction plus a test and a call that sets errno for negative arguments; no result changes (IEEE sqrt is exact).
 # build/libcloth_xpbd.so is the same program as a shared library, which the BenchmarkDotNet comparison
-# (XpbdReferenceBenchmarks) calls in-process. CFLAGS overrides the flags (callgrind needs -march=x86-64-v3:
-# valgrind does not decode AVX-512).
+# (XpbdBenchmarks) calls in-process. CFLAGS overrides the flags (callgrind needs -march=x86-64-v3:
+# valgrind does not decode AVX-512; build that apart, as docs/benchmarks.md does, or the benchmarks load it).
 set -euo pipefail
 cd "$(dirname "$0")"
 CC=${CC:-gcc}
