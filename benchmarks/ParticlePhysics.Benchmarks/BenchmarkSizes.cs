@@ -29,6 +29,9 @@ internal static class BenchmarkSizes
     /// <summary>n for the one-core / two-core comparison (issue 5): 64 and 128 (quick: 16 and 48, above the parallel threshold).</summary>
     public static IEnumerable<int> Parallel => Quick ? new[] { 48 } : new[] { 64, 128 };
 
+    /// <summary>n for the xpbd comparison with the C reference (issue 13): 32 to 256 (quick: 16).</summary>
+    public static IEnumerable<int> Xpbd => Quick ? new[] { 16 } : new[] { 32, 64, 128, 256 };
+
     /// <summary>n for the comparisons with Math.NET and the student baseline: 32 and 128 (quick: 16).</summary>
     public static IEnumerable<int> Comparison => Quick ? new[] { 16 } : new[] { 32, 128 };
 }

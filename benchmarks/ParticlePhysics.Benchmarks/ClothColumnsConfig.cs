@@ -40,3 +40,12 @@ public sealed class ContactColumnsConfig : ManualConfig
         AddColumn(StatisticColumn.Median, StatisticColumn.Min, PerParticleCountColumn.Instance);
     }
 }
+
+/// <summary>The computed columns of the xpbd benchmarks: ms per simulated second and ns per spring projection.</summary>
+public sealed class XpbdColumnsConfig : ManualConfig
+{
+    public XpbdColumnsConfig()
+    {
+        AddColumn(StatisticColumn.Median, StatisticColumn.Min, XpbdWorkColumn.PerSimulatedSecond, XpbdWorkColumn.PerProjection);
+    }
+}

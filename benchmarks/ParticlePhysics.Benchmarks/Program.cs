@@ -19,7 +19,13 @@ namespace ParticlePhysics.Benchmarks;
 /// library step allocates nothing; exits 1 if not.</item>
 /// <item><c>stability [--n 64] [--integrators a,b] [--write] [--verbose]</c>: the largest stable dt of each
 /// integrator (<c>--dt X</c>: one trial at X instead of the search).</item>
-/// <item><c>profile [--n 128] [--seconds 20]</c>: RK4 cloth steps in a loop, for <c>perf record</c>.</item>
+/// <item><c>profile [--n 128] [--seconds 20] [--integrator xpbd [--steps N] [--runner 2]]</c>: RK4 cloth steps (or xpbd
+/// frames) in a loop, for <c>perf record</c> or callgrind.</item>
+/// <item><c>xpbd [--sizes 32,64,128,256] [--rounds 7] [--cores]</c>: a short side-by-side timing of the C xpbd and the
+/// library in one process, alternating (or, with <c>--cores</c>, one core against two), after a bit-for-bit check
+/// (<see cref="XpbdComparison"/>).</item>
+/// <item><c>quality [--n 64]</c>: each solver's cloth after 5 s against RK4 at a small dt: lowest point, stretch of
+/// the structural springs (<see cref="ClothQuality"/>; deterministic, no timing).</item>
 /// <item><c>--quick</c> (before BenchmarkDotNet's arguments): small cloths, for CI.</item>
 /// </list>
 /// After a BenchmarkDotNet run it exits 1 if any benchmark failed or has no result (NA).
@@ -43,6 +49,16 @@ internal static class Program
             return RunProfile(args[1..]);
         }
 
+        if (args.Length > 0 && args[0] == "xpbd")
+        {
+            return XpbdComparison.Run(args[1..]);
+        }
+
+        if (args.Length > 0 && args[0] == "quality")
+        {
+            return ClothQuality.Run(args[1..]);
+        }
+
         var quick = args.Length > 0 && args[0] == "--quick";
         if (quick)
         {
@@ -55,7 +71,7 @@ internal static class Program
         if (quick)
         {
             // CI: a filter that silently matches nothing must not pass.
-            foreach (var type in new[] { typeof(ClothStepBenchmarks), typeof(IntegratorBenchmarks), typeof(ComparisonBenchmarks), typeof(SpringKernelBenchmarks), typeof(PackedStepBenchmarks), typeof(ContactBenchmarks) })
+            foreach (var type in new[] { typeof(ClothStepBenchmarks), typeof(IntegratorBenchmarks), typeof(ComparisonBenchmarks), typeof(SpringKernelBenchmarks), typeof(PackedStepBenchmarks), typeof(ContactBenchmarks), typeof(XpbdBenchmarks), typeof(XpbdParallelBenchmarks) })
             {
                 if (!summaries.Any(s => s.BenchmarksCases.Any(c => c.Descriptor.Type == type)))
                 {
@@ -164,6 +180,11 @@ internal static class Program
     {
         var n = int.Parse(Option(args, "--n") ?? "128", CultureInfo.InvariantCulture);
         var seconds = double.Parse(Option(args, "--seconds") ?? "20", CultureInfo.InvariantCulture);
+        if (Option(args, "--integrator") is "xpbd")
+        {
+            return RunXpbdProfile(n, seconds, Option(args, "--steps"), Option(args, "--runner"));
+        }
+
         var cloth = new ClothFixture(n);
         var rk4 = new RungeKutta4();
         var clock = Stopwatch.StartNew();
@@ -186,19 +207,55 @@ internal static class Program
         return 0;
     }
 
+    /// <summary>
+    /// xpbd frames of 1/60 s (10 substeps) from rest, a reset every simulated second: for <c>--seconds</c> of wall time
+    /// (for perf), or exactly <c>--steps</c> frames (for callgrind: two run lengths, the difference is the frames'
+    /// instructions), then the checksum that <c>cloth_xpbd --run</c> prints after as many frames from rest.
+    /// </summary>
+    private static int RunXpbdProfile(int n, double seconds, string? steps, string? runnerThreads)
+    {
+        var cloth = new XpbdCloth(n);
+        using var runner = runnerThreads is null ? null : new Parallel.WorkerThreadRunner(int.Parse(runnerThreads, CultureInfo.InvariantCulture));
+        cloth.Runner = runner;
+        var fixedSteps = steps is null ? -1L : long.Parse(steps, CultureInfo.InvariantCulture);
+        var clock = Stopwatch.StartNew();
+        long frames = 0;
+        cloth.Reset();
+        while (fixedSteps >= 0 ? frames < fixedSteps : clock.Elapsed.TotalSeconds < seconds)
+        {
+            if (frames > 0 && frames % XpbdCloth.StepsPerSecond == 0)
+            {
+                cloth.Reset();
+            }
+
+            cloth.Run(1);
+            frames++;
+        }
+
+        var perSecond = clock.Elapsed.TotalSeconds / Math.Max(1, frames) * XpbdCloth.StepsPerSecond;
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"n = {n}: {frames} xpbd frames, {perSecond * 1e3:F2} ms per simulated second, {perSecond * 1e9 / cloth.ProjectionsPerSecond:F2} ns per projection, checksum {cloth.Checksum():R}"));
+        return 0;
+    }
+
     private static string? Option(string[] args, string name)
     {
         var i = Array.IndexOf(args, name);
         return i >= 0 && i + 1 < args.Length ? args[i + 1] : null;
     }
 
-    private static string RepositoryRoot()
+    /// <summary>The repository's root: the first directory above <paramref name="start"/> (default: the current one) with ParticlePhysics.sln.</summary>
+    internal static string RepositoryRoot(string? start = null)
     {
-        for (var dir = new DirectoryInfo(Directory.GetCurrentDirectory()); dir is not null; dir = dir.Parent)
+        foreach (var from in new[] { start, Directory.GetCurrentDirectory() })
         {
-            if (File.Exists(Path.Combine(dir.FullName, "ParticlePhysics.sln")))
+            for (var dir = from is null ? null : new DirectoryInfo(from); dir is not null; dir = dir.Parent)
             {
-                return dir.FullName;
+                if (File.Exists(Path.Combine(dir.FullName, "ParticlePhysics.sln")))
+                {
+                    return dir.FullName;
+                }
             }
         }
 

@@ -12,6 +12,8 @@ namespace ParticlePhysics.Benchmarks;
 /// the student's single-precision cloth must match the library's positions within <see cref="StudentTolerance"/>
 /// (float rounding), Math.NET's RK4 within <see cref="MathNetTolerance"/> (only the summation order differs);
 /// and a library step must allocate nothing. The spring-loop experiments must give bit-identical forces. Also prints a checksum the C reference prints too.
+/// xpbd: one simulated second of the library and of the C reference (<see cref="NativeXpbd"/>, which needs gcc) must be
+/// bit-identical at n = 16, 32 and 64.
 /// </summary>
 internal static class Verification
 {
@@ -73,6 +75,20 @@ internal static class Verification
             Console.WriteLine(string.Create(
                 CultureInfo.InvariantCulture,
                 $"n = {n}: checksum (sum of the state after {ClothFixture.StepsPerInvoke} steps) = {checksum:R}"));
+        }
+
+        foreach (var n in new[] { 16, 32, 64 })
+        {
+            // The C xpbd reference (built with gcc if needed) must give the same state to the last bit after the same
+            // second; the checksum is the one cloth_xpbd --run 60 n prints.
+            var xpbd = new XpbdCloth(n);
+            xpbd.SimulateSecond();
+            Console.WriteLine(string.Create(
+                CultureInfo.InvariantCulture,
+                $"n = {n}: xpbd checksum (sum of the state after {XpbdCloth.StepsPerSecond} steps of 1/60 s, {XpbdCloth.Substeps} substeps) = {xpbd.Checksum():R}"));
+            using var c = new NativeXpbd(n);
+            c.Run(XpbdCloth.FrameTime, XpbdCloth.Substeps, XpbdCloth.StepsPerSecond);
+            ok &= Check($"n = {n}: C xpbd reference vs library after one second, differing state values", Differences(c.State(n * n), xpbd.System.State), 0, 0);
         }
 
         var kernels = new SpringKernels(new ClothFixture(32));

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics;
 
@@ -46,6 +47,10 @@ public readonly ref struct ConstraintContext
     /// <param name="masses">The masses, one per particle.</param>
     /// <param name="inverseMasses">The inverse masses, one per particle: 0 for a pinned particle.</param>
     /// <param name="radii">The radii, one per particle, or empty (all points).</param>
+    /// <param name="runner">
+    /// The runner a set with much work may split it over (<see cref="ParticleWorld.Runner"/>), or null to run on the
+    /// calling thread; the result must be bit-identical either way.
+    /// </param>
     public ConstraintContext(
         double time,
         double dt,
@@ -55,7 +60,8 @@ public readonly ref struct ConstraintContext
         Span<double> velocities,
         ReadOnlySpan<double> masses,
         ReadOnlySpan<double> inverseMasses,
-        ReadOnlySpan<double> radii)
+        ReadOnlySpan<double> radii,
+        IParallelRunner? runner = null)
     {
         var n = 3 * masses.Length;
         if (startPositions.Length != n || startVelocities.Length != n || positions.Length != n || velocities.Length != n
@@ -67,6 +73,7 @@ public readonly ref struct ConstraintContext
 
         Time = time;
         Dt = dt;
+        Runner = runner;
         StartPositions = startPositions;
         StartVelocities = startVelocities;
         Positions = positions;
@@ -81,6 +88,12 @@ public readonly ref struct ConstraintContext
 
     /// <summary>The length of the interval, in seconds.</summary>
     public double Dt { get; }
+
+    /// <summary>
+    /// The runner a set with much work may split it over (the world's <see cref="ParticleWorld.Runner"/>), or null.
+    /// Chunks of one call must touch disjoint data, so that the result does not depend on the runner.
+    /// </summary>
+    public IParallelRunner? Runner { get; }
 
     /// <summary>The number of particles.</summary>
     public int Count => Masses.Length;

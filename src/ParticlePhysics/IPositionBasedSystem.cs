@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics;
 
@@ -15,6 +16,12 @@ public interface IPositionBasedSystem : ISecondOrderSystem
 {
     /// <summary>The inverse masses, one per particle: 0 for a pinned particle, which moves only at its own velocity.</summary>
     ReadOnlySpan<double> InverseMasses { get; }
+
+    /// <summary>
+    /// The runner the integrator may split its passes over the particles on (<see cref="ParticleWorld.Runner"/>), or
+    /// null for the calling thread only; the result must not depend on it.
+    /// </summary>
+    IParallelRunner? Runner { get; }
 
     /// <summary>
     /// Writes the accelerations F / m of the forces that no constraint set projects (<see cref="IForceProjection"/>),

@@ -471,7 +471,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         var n = 3 * _count;
         var end = _next.AsSpan(0, 2 * n);
         var context = new ConstraintContext(
-            _time, dt, start.Slice(0, n), start.Slice(n, n), end.Slice(0, n), end.Slice(n, n), Masses, InverseMasses, Radii);
+            _time, dt, start.Slice(0, n), start.Slice(n, n), end.Slice(0, n), end.Slice(n, n), Masses, InverseMasses, Radii, Runner);
         for (var c = 0; c < _constraintSets.Count; c++)
         {
             _constraintSets[c].Resolve(in context);
@@ -569,13 +569,20 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
             _unprojected[g].AddForces(in view, forces);
         }
 
-        for (var i = 0; i < _count; i++)
+        unsafe
         {
-            var w = _inverseMasses[i];
-            var o = 3 * i;
-            accelerations[o] = forces[o] * w;
-            accelerations[o + 1] = forces[o + 1] * w;
-            accelerations[o + 2] = forces[o + 2] * w;
+            // The accumulator and the inverse masses are arrays of at least n and _count values, accelerations n.
+            fixed (double* f = _forces, w = _inverseMasses, a = accelerations)
+            {
+                double* fi = f, ai = a;
+                for (var i = 0; i < _count; i++, fi += 3, ai += 3)
+                {
+                    var wi = w[i];
+                    ai[0] = fi[0] * wi;
+                    ai[1] = fi[1] * wi;
+                    ai[2] = fi[2] * wi;
+                }
+            }
         }
     }
 
@@ -621,7 +628,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     {
         Guard.PositiveFinite(dt, nameof(dt));
         return new ConstraintContext(
-            time, dt, startPositions, startVelocities, positions, velocities, Masses, InverseMasses, Radii);
+            time, dt, startPositions, startVelocities, positions, velocities, Masses, InverseMasses, Radii, Runner);
     }
 
     /// <summary>The generators that no constraint set projects (<see cref="IForceProjection"/>), in their order.</summary>

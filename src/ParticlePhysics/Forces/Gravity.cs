@@ -52,10 +52,24 @@ public sealed class Gravity : IForceGenerator, IPotentialEnergy, IForceJacobian
         double gx = _acceleration.X, gy = _acceleration.Y, gz = _acceleration.Z;
         if (gx == 0.0 && gz == 0.0)
         {
-            // The usual case, gravity along y: one addition per particle instead of three (adding 0 changes nothing).
-            for (var i = 0; i < masses.Length; i++)
+            // The usual case, gravity along y: one addition per particle instead of three (adding 0 changes nothing),
+            // through pointers once the sizes are checked (a strided store would otherwise be bounds-checked each time).
+            if (forces.Length < 3 * masses.Length)
             {
-                forces[(3 * i) + 1] += masses[i] * gy;
+                throw new ArgumentException(
+                    $"forces must hold 3 values per particle ({3 * masses.Length}); it holds {forces.Length}.", nameof(forces));
+            }
+
+            unsafe
+            {
+                fixed (double* m = masses, f = forces)
+                {
+                    var fy = f + 1;
+                    for (double* mi = m, last = m + masses.Length; mi < last; mi++, fy += 3)
+                    {
+                        *fy += *mi * gy;
+                    }
+                }
             }
 
             return;

@@ -70,6 +70,53 @@ internal static class VectorKernels
         }
     }
 
+    /// <summary>
+    /// The semi-implicit Euler prediction of a position-based substep: x0 = x, v0 = v, then v = v0 + h a and
+    /// x = x0 + h v, element by element (all five spans of one length).
+    /// </summary>
+    public static void Predict(Span<double> x, Span<double> v, Span<double> x0, Span<double> v0, ReadOnlySpan<double> a, double h)
+    {
+        var n = a.Length;
+        x = x.Slice(0, n);
+        v = v.Slice(0, n);
+        x0 = x0.Slice(0, n);
+        v0 = v0.Slice(0, n);
+        var ar = a.ForReading();
+        var i = 0;
+        if (Vector.IsHardwareAccelerated)
+        {
+            var xv = MemoryMarshal.Cast<double, Vector<double>>(x);
+            var vv = MemoryMarshal.Cast<double, Vector<double>>(v);
+            var x0v = MemoryMarshal.Cast<double, Vector<double>>(x0);
+            var v0v = MemoryMarshal.Cast<double, Vector<double>>(v0);
+            var av = MemoryMarshal.Cast<double, Vector<double>>(ar);
+            var hv = new Vector<double>(h);
+            for (var j = 0; j < av.Length; j++)
+            {
+                var xj = xv[j];
+                var vj = vv[j];
+                x0v[j] = xj;
+                v0v[j] = vj;
+                vj += hv * av[j];
+                vv[j] = vj;
+                xv[j] = xj + (hv * vj);
+            }
+
+            i = av.Length * Vector<double>.Count;
+        }
+
+        for (; i < n; i++)
+        {
+            var xi = x[i];
+            var vi = v[i];
+            x0[i] = xi;
+            v0[i] = vi;
+            vi += h * ar[i];
+            v[i] = vi;
+            x[i] = xi + (h * vi);
+        }
+    }
+
     /// <summary>target -= a source (drag: F -= lambda v); t + (-a) s is exactly t - a s, so this is AddScaled.</summary>
     public static void SubtractScaled(Span<double> target, ReadOnlySpan<double> source, double a) =>
         AddScaled(target, source, -a);

@@ -170,6 +170,19 @@ public class XpbdTests
         Assert.Contains(world.Constraints, c => c is SpringProjection);
     }
 
+    [Fact]
+    public void A_spring_from_a_particle_to_itself_is_refused_by_name()
+    {
+        var world = new ParticleWorld();
+        world.AddParticle(Vector3d.Zero, 1);
+        world.AddParticle(new Vector3d(1, 0, 0), 1);
+        world.AddConstraints(new SpringProjection(new SelfSpring()));
+        var before = world.State.ToArray();
+        var ex = Assert.Throws<ArgumentException>(() => world.Step(new Xpbd(), 0.01));
+        Assert.Contains("Spring 0 joins particle 1 to itself", ex.Message, StringComparison.Ordinal);
+        Assert.Equal(before, world.State.ToArray());
+    }
+
     private static ParticleWorld HangingSpring(double stiffness, double mass, double damping, out SpringNetwork springs)
     {
         var world = new ParticleWorld();
@@ -180,6 +193,34 @@ public class XpbdTests
         world.AddForce(new Gravity());
         world.AddConstraints(new SpringProjection(springs));
         return world;
+    }
+
+    /// <summary>Springs from elsewhere than a SpringNetwork (which refuses them): one joining particle 1 to itself.</summary>
+    private sealed class SelfSpring : ISpringElements
+    {
+        public int TopologyVersion => 0;
+
+        public int ParameterVersion => 0;
+
+        public int PairCount => 1;
+
+        public int AnchoredCount => 0;
+
+        public void AddForces(in ParticleState state, Span<double> forces)
+        {
+        }
+
+        public void CopyPairs(Span<int> first, Span<int> second, Span<double> parameters)
+        {
+            first[0] = second[0] = 1;
+            parameters[0] = 10;
+            parameters[1] = 1;
+            parameters[2] = 0;
+        }
+
+        public void CopyAnchored(Span<int> particle, Span<double> parameters)
+        {
+        }
     }
 
     private sealed class Counter : IConstraintSet

@@ -1,0 +1,156 @@
+using System;
+using System.Diagnostics;
+using System.Globalization;
+using System.Linq;
+using ParticlePhysics.Parallel;
+
+namespace ParticlePhysics.Benchmarks;
+
+/// <summary>
+/// The xpbd mode (issue 13): a short side-by-side timing for a machine that BenchmarkDotNet's default job would take
+/// too long on, or that is shared. For each n, one process: the C reference (<see cref="NativeXpbd"/>) and the library
+/// must give the same state to the last bit after one simulated second; then, after two warm-up seconds each, they
+/// simulate one second from rest in turn, <c>--rounds</c> times, so that both see the same load. Printed: the
+/// fastest round of each (wall time and process CPU time), the ratio of the fastest, and the median of the rounds'
+/// ratios. <c>--cores</c>: the same for the library on one core against <see cref="WorkerThreadRunner"/>(2), with the
+/// two cloths checked bit-identical (wall time only: CPU time adds the cores up).
+/// </summary>
+internal static class XpbdComparison
+{
+    public static int Run(string[] args)
+    {
+        var sizes = (Option(args, "--sizes") ?? "32,64,128,256").Split(',').Select(s => int.Parse(s, CultureInfo.InvariantCulture)).ToArray();
+        var rounds = int.Parse(Option(args, "--rounds") ?? "7", CultureInfo.InvariantCulture);
+        var cores = args.Contains("--cores");
+        Console.WriteLine(cores
+            ? "xpbd, 10 substeps per 1/60 s frame, one simulated second from rest: library on one core vs WorkerThreadRunner(2), alternating"
+            : "xpbd, 10 substeps per 1/60 s frame, one simulated second from rest: C reference (gcc -O3) vs library on one core, alternating");
+        Console.WriteLine(string.Create(CultureInfo.InvariantCulture, $"{rounds} rounds; fastest round [ms] (CPU time of the process in brackets); ratio of the fastest; median of the per-round ratios (of CPU times)"));
+        var ok = true;
+        foreach (var n in sizes)
+        {
+            ok &= cores ? CompareCores(n, rounds) : CompareWithC(n, rounds);
+        }
+
+        return ok ? 0 : 1;
+    }
+
+    private static bool CompareWithC(int n, int rounds)
+    {
+        using var c = new NativeXpbd(n);
+        var library = new XpbdCloth(n);
+        try
+        {
+            XpbdBenchmarks.SameCloth(c, library);
+        }
+        catch (InvalidOperationException exception)
+        {
+            Console.WriteLine($"error: {exception.Message}");
+            return false;
+        }
+
+        void RunC()
+        {
+            c.Reset();
+            c.Run(XpbdCloth.FrameTime, XpbdCloth.Substeps, XpbdCloth.StepsPerSecond);
+        }
+
+        var (a, b) = Alternate(RunC, library.SimulateSecond, rounds);
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"n = {n,3} ({library.SpringCount} springs, same bits): C {a.BestWall:F2} ({a.BestCpu:F2}) ms, library {b.BestWall:F2} ({b.BestCpu:F2}) ms; C# / C {b.BestWall / a.BestWall:F3} (CPU {b.BestCpu / a.BestCpu:F3}), median {Median(b.Wall, a.Wall):F3} (CPU {Median(b.Cpu, a.Cpu):F3}); library {b.BestWall * 1e6 / library.ProjectionsPerSecond:F2} ns, C {a.BestWall * 1e6 / library.ProjectionsPerSecond:F2} ns per projection"));
+        return true;
+    }
+
+    private static bool CompareCores(int n, int rounds)
+    {
+        var cloth = new XpbdCloth(n);
+        using var runner = new WorkerThreadRunner(2);
+        cloth.SimulateSecond();
+        var one = cloth.Checksum();
+        var oneState = cloth.System.State.ToArray();
+        cloth.Runner = runner;
+        cloth.SimulateSecond();
+        var same = cloth.System.State.SequenceEqual(oneState);
+        void OneCore()
+        {
+            cloth.Runner = null;
+            cloth.SimulateSecond();
+        }
+
+        void TwoCores()
+        {
+            cloth.Runner = runner;
+            cloth.SimulateSecond();
+        }
+
+        var (a, b) = Alternate(OneCore, TwoCores, rounds);
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"n = {n,3} (checksum {one:R}, {(same ? "same bits on one and two cores" : "DIFFERENT states on one and two cores")}): one core {a.BestWall:F2} ms, two {b.BestWall:F2} ms; speedup {a.BestWall / b.BestWall:F3}, median {Median(a.Wall, b.Wall):F3}"));
+        return same;
+    }
+
+    /// <summary>Two warm-up runs of each, then <paramref name="rounds"/> rounds of first then second.</summary>
+    private static (Times First, Times Second) Alternate(Action first, Action second, int rounds)
+    {
+        for (var i = 0; i < 2; i++)
+        {
+            first();
+            second();
+        }
+
+        var a = new Times(rounds);
+        var b = new Times(rounds);
+        for (var r = 0; r < rounds; r++)
+        {
+            a.Measure(r, first);
+            b.Measure(r, second);
+        }
+
+        return (a, b);
+    }
+
+    /// <summary>The median over the rounds of numerator[r] / denominator[r].</summary>
+    private static double Median(double[] numerator, double[] denominator)
+    {
+        var ratios = numerator.Select((x, r) => x / denominator[r]).OrderBy(x => x).ToArray();
+        return ratios.Length % 2 == 1 ? ratios[ratios.Length / 2] : 0.5 * (ratios[(ratios.Length / 2) - 1] + ratios[ratios.Length / 2]);
+    }
+
+    private static string? Option(string[] args, string name)
+    {
+        var i = Array.IndexOf(args, name);
+        return i >= 0 && i + 1 < args.Length ? args[i + 1] : null;
+    }
+
+    private sealed class Times
+    {
+        public Times(int rounds)
+        {
+            Wall = new double[rounds];
+            Cpu = new double[rounds];
+        }
+
+        /// <summary>Wall time of each round [ms].</summary>
+        public double[] Wall { get; }
+
+        /// <summary>CPU time of the process in each round [ms].</summary>
+        public double[] Cpu { get; }
+
+        public double BestWall => Wall.Min();
+
+        public double BestCpu => Cpu.Min();
+
+        public void Measure(int round, Action action)
+        {
+            using var process = Process.GetCurrentProcess();
+            var cpu = process.TotalProcessorTime;
+            var clock = Stopwatch.StartNew();
+            action();
+            Wall[round] = clock.Elapsed.TotalMilliseconds;
+            process.Refresh();
+            Cpu[round] = (process.TotalProcessorTime - cpu).TotalMilliseconds;
+        }
+    }
+}
