@@ -100,12 +100,15 @@ internal sealed class JsonRunWriter : IRunWriter
         o.WriteLine(" } },");
         if (outcome.Diverged is { } d)
         {
-            o.WriteLine($"  \"diverged\": {{ \"t\": {Numbers.Json(d.Time)}, \"message\": {JsonText.String(d.Exception.Message)} }}");
+            o.Write($"  \"diverged\": {{ \"t\": {Numbers.Json(d.Time)}, \"message\": {JsonText.String(d.Exception.Message)} }}");
         }
         else
         {
-            o.WriteLine("  \"diverged\": null");
+            o.Write("  \"diverged\": null");
         }
+
+        // Ctrl-C: the document still closes, and says so.
+        o.WriteLine(outcome.Interrupted ? ",\n  \"interrupted\": true" : string.Empty);
 
         o.WriteLine("}");
         o.Flush();

@@ -29,10 +29,9 @@ internal sealed class ClothSnapshotPlot : IRunPlot
 
     public bool Wants(int step) => Array.IndexOf(_steps, step) >= 0 || _plan.IsOutputStep(step);
 
-    public void Add(double[] row)
+    public void Add(int step, double[] row)
     {
         // Keep the snapshot steps, and the latest row in case the run diverges before its last snapshot.
-        var step = (int)Math.Round(row[0] / _plan.Dt);
         if (Array.IndexOf(_steps, step) >= 0 && _snapshots.All(s => s.Time != row[0]))
         {
             _snapshots.Add(Take(row));
@@ -42,6 +41,10 @@ internal sealed class ClothSnapshotPlot : IRunPlot
         {
             _latest = Take(row);
         }
+    }
+
+    public void Finish(RunOutcome outcome)
+    {
     }
 
     public string ToSvg(RunOutcome outcome)

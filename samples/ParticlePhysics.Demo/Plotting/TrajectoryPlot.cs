@@ -29,13 +29,17 @@ internal sealed class TrajectoryPlot : IRunPlot
 
     public bool Wants(int step) => _plan.IsOutputStep(step);
 
-    public void Add(double[] row)
+    public void Add(int step, double[] row)
     {
         _time.Add(row[0]);
         for (var i = 0; i < _indices.Length; i++)
         {
             _values[i].Add(row[_indices[i]]);
         }
+    }
+
+    public void Finish(RunOutcome outcome)
+    {
     }
 
     public string ToSvg(RunOutcome outcome)

@@ -1,0 +1,193 @@
+// The demo's --animate pages in a real browser: Debian's Chromium, headless, driven by playwright-core (which
+// downloads no browser of its own). For every scenario the demo lists that has particles, and for two harder cases
+// (a 32 x 32 cloth and a cloth that diverges), the test writes the page with the built demo and checks that:
+//   - it runs without a script error or a console error, and asks for nothing but its own file;
+//   - it decodes its recording (window.replay.ready, no window.replay.error);
+//   - the picture changes between two times (pixels of the canvas);
+//   - the time slider seeks: the time shown follows it, and the same time gives the same picture;
+//   - play advances the time and pause stops it;
+//   - dragging on the picture orbits the camera (the picture changes, the time does not).
+// Run: npm ci && node --test replay.test.mjs (the demo built in Release first: dotnet build -c Release).
+// DEMO_DLL overrides the demo's path, CHROMIUM the browser's, REPLAY_SCREENSHOTS names a folder for a PNG per page.
+import { after, before, describe, it } from "node:test";
+import assert from "node:assert/strict";
+import { execFileSync } from "node:child_process";
+import { existsSync, mkdirSync, mkdtempSync, rmSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { dirname, join, resolve } from "node:path";
+import { fileURLToPath, pathToFileURL } from "node:url";
+import { chromium } from "playwright-core";
+
+const here = dirname(fileURLToPath(import.meta.url));
+const demo = process.env.DEMO_DLL || resolve(here, "../../samples/ParticlePhysics.Demo/bin/Release/net10.0/ParticlePhysics.Demo.dll");
+const executablePath = process.env.CHROMIUM || "/usr/bin/chromium";
+const screenshots = process.env.REPLAY_SCREENSHOTS || null;
+const work = mkdtempSync(join(tmpdir(), "pp-replay-"));
+
+function runDemo(args) {
+  try {
+    execFileSync("dotnet", [demo, ...args, "--format", "csv"], { stdio: ["ignore", "ignore", "pipe"], timeout: 300_000 });
+    return { status: 0, stderr: "" };
+  } catch (error) {
+    if (typeof error.status !== "number") throw error;
+    return { status: error.status, stderr: String(error.stderr) };
+  }
+}
+
+// The demo's own list of commands (its --help), less convergence: every scenario gets its page tested.
+function scenarios() {
+  const help = execFileSync("dotnet", [demo, "--help"], { encoding: "utf8" });
+  const commands = help.slice(help.indexOf("Commands:")).split("\n").slice(1)
+    .map((line) => /^\s{2}([a-z][a-z0-9-]*)\s/.exec(line)).filter(Boolean).map((m) => m[1]);
+  return commands.filter((name) => name !== "convergence");
+}
+
+// Each case's page is written up front, so that a scenario the demo refuses (a plain ODE) gets its own one test.
+if (!existsSync(demo)) throw new Error(`the demo is not built at ${demo}: run dotnet build -c Release first`);
+const cases = scenarios().map((name) => ({ name, args: [name], exit: 0 }));
+cases.push({ name: "cloth-32x32", args: ["cloth", "--resolution", "1/31", "--duration", "2"], exit: 0 });
+cases.push({ name: "cloth-diverged", args: ["cloth", "--dt", "0.0166667"], exit: 3 });
+for (const c of cases) {
+  c.file = join(work, c.name + ".html");
+  c.run = runDemo([...c.args, "--animate", c.file]);
+  c.plain = c.run.status === 2 && /--animate replays particles, and .* is a plain ODE/.test(c.run.stderr);
+}
+
+let browser;
+before(async () => {
+  browser = await chromium.launch({
+    executablePath,
+    args: ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
+      "--disable-component-update", "--disable-sync"],
+  });
+});
+after(async () => {
+  await browser?.close();
+  rmSync(work, { recursive: true, force: true });
+});
+
+for (const c of cases.filter((c) => c.plain)) {
+  it(`${c.name}: has no particles, and the demo refuses --animate with one error line and no page`, () => {
+    assert.equal(c.run.stderr.trim().split("\n").length, 1);
+    assert.equal(existsSync(c.file), false);
+  });
+}
+
+for (const c of cases.filter((c) => !c.plain)) {
+  describe(c.name, { timeout: 240_000 }, () => {
+    const file = c.file, exit = c.run.status;
+    let page, problems = [], requests = [];
+
+    before(async () => {
+      assert.ok(existsSync(file), `the demo (exit ${exit}) wrote no page: ${c.run.stderr}`);
+      const context = await browser.newContext({ viewport: { width: 1000, height: 680 } });
+      page = await context.newPage();
+      page.on("pageerror", (error) => problems.push("page error: " + error.message));
+      page.on("console", (message) => { if (message.type() === "error") problems.push("console error: " + message.text()); });
+      const own = pathToFileURL(file).href;
+      await context.route("**/*", (route) => {
+        const url = route.request().url();
+        if (url === own) return route.continue();
+        requests.push(url);
+        return route.abort();
+      });
+      await page.goto(own);
+      await page.waitForFunction(() => window.replay && (window.replay.ready || window.replay.error), null, { timeout: 60_000 });
+    });
+    after(async () => { await page?.context().close(); });
+
+    const rendersNow = () => page.evaluate(() => window.replay.renders);
+    const settled = async (before) => page.waitForFunction((n) => window.replay.renders > n, before, { timeout: 30_000 });
+    // Moves the slider as a user does: types a time (three decimals, as a range input keeps them), or presses End.
+    const seekWithSlider = async (t) => {
+      const before = await rendersNow();
+      const slider = page.locator("#slider");
+      if (t === "end") await slider.press("End"); else await slider.fill(String(Number(t.toFixed(3))));
+      await settled(before);
+    };
+    // Keeps the canvas's pixels under a name, and counts the pixels that differ between two kept pictures.
+    const keep = (name) => page.evaluate((name) => {
+      const canvas = document.getElementById("view");
+      (window.kept ??= {})[name] = canvas.getContext("2d").getImageData(0, 0, canvas.width, canvas.height).data;
+    }, name);
+    const differing = (a, b) => page.evaluate(([a, b]) => {
+      const x = window.kept[a], y = window.kept[b];
+      if (x.length !== y.length) return Infinity;
+      let count = 0;
+      for (let i = 0; i < x.length; i += 4) if (x[i] !== y[i] || x[i + 1] !== y[i + 1] || x[i + 2] !== y[i + 2]) count++;
+      return count;
+    }, [a, b]);
+
+    it("runs without script errors and loads nothing else", () => {
+      assert.equal(exit, c.exit, "the demo's exit code");
+      assert.deepEqual(problems, []);
+      assert.deepEqual(requests, [], "requests beyond the page itself");
+      return page.evaluate(() => window.replay).then((replay) => {
+        assert.equal(replay.error, null);
+        assert.equal(replay.ready, true);
+        assert.ok(replay.frameCount >= 2, `${replay.frameCount} frames`);
+        assert.ok(replay.duration > 0);
+      });
+    });
+
+    it("changes its picture between two times", async () => {
+      const duration = await page.evaluate(() => window.replay.duration);
+      await seekWithSlider(0);
+      await keep("start");
+      await seekWithSlider(duration / 2);
+      await keep("middle");
+      const changed = await differing("start", "middle");
+      assert.ok(changed >= 20, `${changed} pixels changed between t = 0 and t = ${(duration / 2).toFixed(3)}`);
+      if (screenshots) { mkdirSync(screenshots, { recursive: true }); await page.screenshot({ path: join(screenshots, c.name + ".png") }); }
+    });
+
+    it("seeks with the time slider", async () => {
+      const duration = await page.evaluate(() => window.replay.duration);
+      const target = Number((0.3 * duration).toFixed(3));
+      await seekWithSlider(target);
+      assert.ok(Math.abs(await page.evaluate(() => window.replay.time) - target) < 1e-9);
+      const shown = await page.locator("#time").textContent();
+      assert.match(shown, new RegExp("^t = " + target.toFixed(duration < 10 ? 3 : 2).replace(".", "\\.") + " s / "));
+      await keep("seek-a");
+      await seekWithSlider("end");
+      assert.equal(await page.evaluate(() => window.replay.time), duration, "End on the slider goes to the end");
+      await keep("seek-end");
+      await seekWithSlider(target);
+      await keep("seek-b");
+      assert.equal(await differing("seek-a", "seek-b"), 0, "the same time twice gives the same picture");
+      assert.ok(await differing("seek-a", "seek-end") > 0, "another time gives another picture");
+    });
+
+    it("plays and pauses", async () => {
+      await seekWithSlider(0);
+      await page.locator("#speed").selectOption("0.1");   // the shortest run (0.28 s) then plays for 2.8 s
+      await page.locator("#play").click();
+      assert.equal(await page.evaluate(() => window.replay.playing), true);
+      await page.waitForFunction(() => window.replay.time > 0, null, { timeout: 30_000 });
+      await page.locator("#play").click();
+      assert.equal(await page.evaluate(() => window.replay.playing), false);
+      const paused = await page.evaluate(() => window.replay.time);
+      await page.waitForTimeout(300);
+      assert.equal(await page.evaluate(() => window.replay.time), paused);
+      assert.equal(await page.locator("#play").textContent(), "Play");
+      await page.locator("#speed").selectOption("1");
+    });
+
+    it("orbits the camera when the picture is dragged", async () => {
+      await seekWithSlider(await page.evaluate(() => window.replay.duration / 3));
+      await keep("before-orbit");
+      const time = await page.evaluate(() => window.replay.time);
+      const box = await page.locator("#view").boundingBox();
+      const before = await rendersNow();
+      await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+      await page.mouse.down();
+      await page.mouse.move(box.x + box.width / 2 + 120, box.y + box.height / 2 + 30, { steps: 6 });
+      await page.mouse.up();
+      await settled(before);
+      await keep("after-orbit");
+      assert.ok(await differing("before-orbit", "after-orbit") >= 20, "the view turned");
+      assert.equal(await page.evaluate(() => window.replay.time), time, "orbiting leaves the time alone");
+      assert.deepEqual(problems, []);
+    });
+  });
+}
