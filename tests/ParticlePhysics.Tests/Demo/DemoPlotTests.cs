@@ -1,4 +1,5 @@
 using System;
+using System.Globalization;
 using System.IO;
 using System.Linq;
 using System.Xml.Linq;
@@ -6,7 +7,11 @@ using ParticlePhysics.Integrators;
 
 namespace ParticlePhysics.Tests.Demo;
 
-/// <summary><c>--plot</c> writes an SVG document that parses as XML and holds the curves it announces.</summary>
+/// <summary>
+/// <c>--plot</c> writes an SVG document that parses as XML and holds the curves it announces: every curve with its
+/// own marker or dash pattern, the exact curve over the computed one and thinner, reference slopes on convergence
+/// charts, axes and pins on the cloth's panels and a perspective view, and no text past the edges.
+/// </summary>
 public sealed class DemoPlotTests : IDisposable
 {
     private static readonly XNamespace _svg = "http://www.w3.org/2000/svg";
@@ -24,11 +29,34 @@ public sealed class DemoPlotTests : IDisposable
         Assert.Equal(0, result.ExitCode);
         var document = XDocument.Load(path);
         Assert.Equal(_svg + "svg", document.Root!.Name);
-        Assert.Equal(2, document.Descendants(_svg + "polyline").Count());
+        var curves = document.Descendants(_svg + "polyline").ToArray();
+        Assert.Equal(2, curves.Length);
         var texts = document.Descendants(_svg + "text").Select(t => t.Value).ToArray();
         Assert.Contains("y0 (rk4)", texts);
         Assert.Contains("y0 exact", texts);
         Assert.Contains("t (s)", texts);
+
+        // The exact curve comes second (on top), thinner and dashed; the computed one carries markers.
+        Assert.True(Width(curves[1]) < Width(curves[0]));
+        Assert.NotNull(curves[1].Attribute("stroke-dasharray"));
+        Assert.True(document.Descendants(_svg + "circle").Count() >= 10);
+        AssertNothingClipped(document);
+    }
+
+    [Fact]
+    public void Each_curve_of_a_chain_has_its_own_marker_and_the_exact_curves_lie_on_top()
+    {
+        var path = Path.Combine(_folder, "chain.svg");
+
+        Assert.Equal(0, DemoProcess.Run("two-mass-chain", "--plot", path, "--format", "csv").ExitCode);
+
+        var document = XDocument.Load(path);
+        var curves = document.Descendants(_svg + "polyline").ToArray();
+        Assert.Equal(4, curves.Length);
+        Assert.All(curves.Skip(2), exact => Assert.True(Width(exact) < Width(curves[0])));
+        Assert.True(document.Descendants(_svg + "circle").Any());   // y0's markers
+        Assert.True(document.Descendants(_svg + "polygon").Any());  // y1's squares
+        AssertNothingClipped(document);
     }
 
     [Fact]
@@ -45,6 +73,12 @@ public sealed class DemoPlotTests : IDisposable
         var texts = document.Descendants(_svg + "text").Select(t => t.Value).ToArray();
         Assert.Contains(texts, t => t.StartsWith("rk4 (order 4.0", StringComparison.Ordinal));
         Assert.Contains(texts, t => t.StartsWith("1e-", StringComparison.Ordinal)); // decade ticks
+        Assert.Equal(new[] { "slope 1", "slope 2", "slope 4" }, texts.Where(t => t.StartsWith("slope ", StringComparison.Ordinal)).Order());
+
+        // Explicit and implicit Euler nearly coincide: each integrator has a dash pattern of its own (or none).
+        var dashes = document.Descendants(_svg + "polyline").Select(p => (string?)p.Attribute("stroke-dasharray") ?? "solid").ToArray();
+        Assert.Equal(dashes.Length, dashes.Distinct().Count());
+        AssertNothingClipped(document);
     }
 
     [Fact]
@@ -57,8 +91,15 @@ public sealed class DemoPlotTests : IDisposable
         Assert.Equal(0, result.ExitCode);
         var document = XDocument.Load(path);
         var texts = document.Descendants(_svg + "text").Select(t => t.Value).ToArray();
-        Assert.Equal(new[] { "t = 0 s", "t = 0.2 s", "t = 0.4 s", "t = 0.6 s" }, texts.Where(t => t.StartsWith("t = ", StringComparison.Ordinal)));
+        var times = new[] { "t = 0 s", "t = 0.2 s", "t = 0.4 s", "t = 0.6 s" };
+        Assert.Equal(times.SelectMany(t => new[] { t, t }), texts.Where(t => t.StartsWith("t = ", StringComparison.Ordinal))); // front and perspective
         Assert.Equal(4 * 2 * 11, document.Descendants(_svg + "polyline").Count()); // 11 rows and 11 columns per snapshot
+        Assert.Equal(4, texts.Count(t => t == "x (m)"));
+        Assert.Equal(4, texts.Count(t => t == "y (m)"));
+        Assert.Equal(4 * 100, document.Descendants(_svg + "polygon").Count()); // the perspective views' 10 x 10 cells
+        var pins = document.Descendants(_svg + "rect").Count(r => (string?)r.Attribute("fill") == "#C62828");
+        Assert.Equal(8 * 2, pins); // two pinned corners in each of the eight panels
+        AssertNothingClipped(document);
     }
 
     [Fact]
@@ -69,6 +110,32 @@ public sealed class DemoPlotTests : IDisposable
         var result = DemoProcess.Run("cloth", "--dt", "0.0166667", "--plot", path, "--format", "csv");
 
         Assert.Equal(3, result.ExitCode);
-        Assert.Contains("diverged", XDocument.Load(path).Descendants(_svg + "text").First().Value, StringComparison.Ordinal);
+        var document = XDocument.Load(path);
+        Assert.Contains("diverged", document.Descendants(_svg + "text").First().Value, StringComparison.Ordinal);
+        AssertNothingClipped(document);
+    }
+
+    private static double Width(XElement element) => double.Parse((string)element.Attribute("stroke-width")!, CultureInfo.InvariantCulture);
+
+    /// <summary>Every text, at the width the charts are laid out with (0.6 em a character, 0.66 in bold), lies inside the canvas.</summary>
+    private static void AssertNothingClipped(XDocument document)
+    {
+        var width = double.Parse((string)document.Root!.Attribute("width")!, CultureInfo.InvariantCulture);
+        var height = double.Parse((string)document.Root!.Attribute("height")!, CultureInfo.InvariantCulture);
+        foreach (var text in document.Descendants(_svg + "text").Where(t => t.Attribute("transform") is null))
+        {
+            double At(string name) => double.Parse((string)text.Attribute(name)!, CultureInfo.InvariantCulture);
+            var size = At("font-size");
+            var extent = text.Value.Length * size * ((string?)text.Attribute("font-weight") == "bold" ? 0.66 : 0.6);
+            var x = At("x");
+            var (from, to) = (string?)text.Attribute("text-anchor") switch
+            {
+                "middle" => (x - (extent / 2), x + (extent / 2)),
+                "end" => (x - extent, x),
+                _ => (x, x + extent),
+            };
+            Assert.True(from >= 0 && to <= width, $"'{text.Value}' spans x = {from:0} to {to:0}, past the width {width}");
+            Assert.True(At("y") - size >= 0 && At("y") <= height, $"'{text.Value}' at y = {At("y")} is outside the height {height}");
+        }
     }
 }
