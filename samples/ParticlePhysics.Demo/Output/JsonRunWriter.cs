@@ -15,7 +15,8 @@ namespace ParticlePhysics.Demo.Output;
 ///   "diverged": null }
 /// </code>
 /// <c>error</c> is null without an exact solution; <c>diverged</c> is <c>{ "t": ..., "message": ... }</c> when a
-/// step diverged, and <c>summary</c> then describes the last good state. Non-finite numbers are written as null.
+/// step diverged, and <c>summary</c> then describes the last good state; a run stopped by Ctrl-C adds
+/// <c>"interrupted": true</c> after it. Non-finite numbers are written as null.
 /// </summary>
 internal sealed class JsonRunWriter : IRunWriter
 {
