@@ -7,12 +7,14 @@
 //   - the time slider seeks: the time shown follows it, and the same time gives the same picture;
 //   - play advances the time and pause stops it;
 //   - dragging on the picture orbits the camera (the picture changes, the time does not).
+// A last page, the cloth's with radii, rods, cables and one collider of each kind written into its scene, checks the
+// drawing of what the scenarios do not have yet.
 // Run: npm ci && node --test replay.test.mjs (the demo built in Release first: dotnet build -c Release).
 // DEMO_DLL overrides the demo's path, CHROMIUM the browser's, REPLAY_SCREENSHOTS names a folder for a PNG per page.
 import { after, before, describe, it } from "node:test";
 import assert from "node:assert/strict";
 import { execFileSync } from "node:child_process";
-import { existsSync, mkdirSync, mkdtempSync, rmSync } from "node:fs";
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { dirname, join, resolve } from "node:path";
 import { fileURLToPath, pathToFileURL } from "node:url";
@@ -51,6 +53,30 @@ for (const c of cases) {
   c.file = join(work, c.name + ".html");
   c.run = runDemo([...c.args, "--animate", c.file]);
   c.plain = c.run.status === 2 && /--animate replays particles, and .* is a plain ODE/.test(c.run.stderr);
+}
+
+// Every kind of shape the page can draw, before any scenario has them all: the cloth's page with radii, rods,
+// cables (one slack), anchors and the four colliders written into its scene.
+const shapes = { name: "cloth-with-every-shape", file: join(work, "cloth-with-every-shape.html"), exit: 0, plain: false, run: { status: 0, stderr: "" } };
+{
+  const html = readFileSync(cases.find((c) => c.name === "cloth").file, "utf8");
+  const marker = /(<script type="application\/json" id="replay-data">)(.*?)(<\/script>)/s;
+  const data = JSON.parse(marker.exec(html)[2]);
+  data.radii = Array.from({ length: data.particles }, (_, i) => (i % 11 === 10 ? 0.035 : 0.012));
+  data.links.rod = [0, 1, 1, 2, 2, 3];
+  data.links.cable = [110, 120, 60, 121];
+  data.links.cableLengths = [5, 0.01];
+  data.anchors.push([0.5, 0.3, 0.5]);
+  const unit = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
+  const c = Math.cos(0.5), s = Math.sin(0.5);
+  data.colliders = [
+    { kind: "plane", center: [0, -1.3, 0], radius: 0, normal: [0, 1, 0], halfExtents: [0, 0, 0], axes: unit },
+    { kind: "sphere", center: [0.5, -0.75, 0.6], radius: 0.22, normal: [0, 0, 0], halfExtents: [0.22, 0.22, 0.22], axes: unit },
+    { kind: "capsule", center: [1.3, -0.6, 0.2], radius: 0.08, normal: [0, 0, 0], halfExtents: [0.08, 0.3, 0.08], axes: [[0, 0, -1], [1, 0, 0], [0, -1, 0]] },
+    { kind: "box", center: [-0.35, -1.0, 0.5], radius: 0, normal: [0, 0, 0], halfExtents: [0.15, 0.25, 0.1], axes: [[c, 0, -s], [0, 1, 0], [s, 0, c]] },
+  ];
+  writeFileSync(shapes.file, html.replace(marker, (_, open, __, close) => open + JSON.stringify(data).replace(/</g, "\\u003c") + close));
+  cases.push(shapes);
 }
 
 let browser;
