@@ -1,10 +1,12 @@
+using ParticlePhysics.Constraints;
 using ParticlePhysics.Forces;
 
 namespace ParticlePhysics.Demo.Animation;
 
 /// <summary>
 /// Reads what a replay draws, besides the moving positions, from a freshly built world: the pins, the springs of
-/// its force generators (as links by their particles or anchors), and, for a cloth, its grid as a surface.
+/// its force generators and the rods and cables of its constraint sets (as links by their particles or anchors),
+/// and, for a cloth, its grid as a surface.
 /// This is the one place that knows which core types carry something drawable: a new kind of link, a radius or a
 /// collider joins the replay by a line here.
 /// </summary>
@@ -59,8 +61,31 @@ internal static class SceneReader
             }
         }
 
-        // Rods and cables (LinkKind.Rod, LinkKind.Cable) and colliders (scene.AddCollider(ColliderShape.Plane(...)),
-        // Sphere, Capsule, Box) come from world.Constraints: one case per constraint or contact set type, as above.
+        // Colliders come from the contact sets, one case per type below: scene.AddCollider(ColliderShape.Plane(point,
+        // normal)), .Sphere(centre, radius), .Capsule(start, end, radius) or .Box(centre, halfExtents, axes or quaternion).
+        foreach (var set in world.Constraints)
+        {
+            switch (set)
+            {
+                case RodNetwork rods:
+                    for (var r = 0; r < rods.Count; r++)
+                    {
+                        var (first, second) = rods.GetEnds(r);
+                        var kind = rods.IsCable(r) ? LinkKind.Cable : LinkKind.Rod;
+                        if (second < 0)
+                        {
+                            scene.AddAnchoredLink(first, rods.GetAnchor(r), kind, rods.GetLength(r));
+                        }
+                        else
+                        {
+                            scene.AddLink(first, second, kind, rods.GetLength(r));
+                        }
+                    }
+
+                    break;
+            }
+        }
+
         if (clothSide > 1)
         {
             AddGrid(scene, clothSide);

@@ -23,7 +23,7 @@ internal sealed class LineChart
         { MarkerShape.Circle, MarkerShape.Square, MarkerShape.Triangle, MarkerShape.Diamond, MarkerShape.InvertedTriangle, MarkerShape.Cross };
 
     /// <summary>Dash patterns in the order series take them (solid first).</summary>
-    public static readonly string?[] Dashes = { null, "9 4", "3 3", "12 3 3 3", "6 3 1 3" };
+    public static readonly string?[] Dashes = { null, "9 4", "3 3", "12 3 3 3", "6 3 1 3", "2 5", "14 4 2 4 2 4" };
 
     private const double PlotWidth = 560, PlotHeight = 360, Top = 46, Bottom = 58, TitleSize = 15, LabelSize = 11;
     private readonly List<Series> _series = new();

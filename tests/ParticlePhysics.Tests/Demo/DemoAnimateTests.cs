@@ -89,6 +89,24 @@ public sealed partial class DemoAnimateTests : IDisposable
     }
 
     [Fact]
+    public void Rods_and_cables_are_links_of_their_own_kind_with_their_lengths()
+    {
+        var pendulum = Path.Combine(_folder, "pendulum.html");
+        var chain = Path.Combine(_folder, "chain.html");
+
+        Assert.Equal(0, DemoProcess.Run("pendulum", "--duration", "0.5", "--format", "csv", "--animate", pendulum).ExitCode);
+        Assert.Equal(0, DemoProcess.Run("hanging-chain", "--duration", "0.5", "--format", "csv", "--animate", chain).ExitCode);
+
+        var rod = Page.Read(pendulum).Data;
+        Assert.Equal(new[] { 0.0, 0, 0 }, rod.GetProperty("anchors")[0].EnumerateArray().Select(e => e.GetDouble()));
+        Assert.Equal(new[] { 0, 1 }, rod.GetProperty("links").GetProperty("rod").EnumerateArray().Select(e => e.GetInt32())); // the bob to the anchor
+        Assert.False(rod.GetProperty("links").TryGetProperty("spring", out _));
+        var links = Page.Read(chain).Data;
+        Assert.Equal(Enumerable.Range(0, 10).SelectMany(i => new[] { i, i + 1 }), links.GetProperty("links").GetProperty("rod").EnumerateArray().Select(e => e.GetInt32()));
+        Assert.Equal(new[] { 0, 10 }, links.GetProperty("pinned").EnumerateArray().Select(e => e.GetInt32()));
+    }
+
+    [Fact]
     public void The_page_loads_nothing_from_the_network()
     {
         var path = Path.Combine(_folder, "chain.html");

@@ -1,9 +1,10 @@
 using System;
+using ParticlePhysics.Constraints;
 using ParticlePhysics.Forces;
 
 namespace ParticlePhysics.Tests.Physics;
 
-/// <summary>The springs tell what they join (a renderer draws them from it), and refuse an index they do not have.</summary>
+/// <summary>Springs, rods and cables tell what they join (a renderer draws them from it), and refuse an index they do not have.</summary>
 public class SpringTopologyTests
 {
     [Fact]
@@ -41,5 +42,22 @@ public class SpringTopologyTests
         Assert.Equal((0, new Vector3d(-4, 0, 4)), springs.GetAnchoredSpring(0));
         Assert.Throws<ArgumentOutOfRangeException>(() => springs.GetEnds(1));
         Assert.Throws<ArgumentOutOfRangeException>(() => springs.GetAnchoredSpring(1));
+    }
+
+    [Fact]
+    public void A_rod_network_gives_back_its_anchors_and_refuses_one_for_a_link_between_particles()
+    {
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(1, 0, 0), 1);
+        world.AddParticle(new Vector3d(2, 0, 0), 1);
+        var rods = new RodNetwork(world);
+        rods.AddRod(0, 1, 1);
+        rods.AddAnchoredCable(1, new Vector3d(2, 3, 4), 5);
+
+        Assert.Equal((1, -1), rods.GetEnds(1));
+        Assert.True(rods.IsCable(1));
+        Assert.Equal(new Vector3d(2, 3, 4), rods.GetAnchor(1));
+        Assert.Throws<ArgumentException>(() => rods.GetAnchor(0));
+        Assert.Throws<ArgumentOutOfRangeException>(() => rods.GetAnchor(2));
     }
 }
