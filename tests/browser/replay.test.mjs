@@ -6,9 +6,14 @@
 //   - the picture changes between two times (pixels of the canvas);
 //   - the time slider seeks: the time shown follows it, and the same time gives the same picture;
 //   - play advances the time and pause stops it;
-//   - dragging on the picture orbits the camera (the picture changes, the time does not).
-// A last page, the cloth's with radii, rods, cables and one collider of each kind written into its scene, checks the
-// drawing of what the scenarios do not have yet.
+//   - dragging on the picture orbits the camera (the picture changes, the time does not);
+//   - it holds what the scenario has (window.replay.scene against the list below: colliders by kind, radii, pins,
+//     anchors, springs, rods, surface);
+//   - where there are colliders, they are drawn (hiding them changes the picture, showing them again restores it),
+//     a still one stays put and a moving one moves (with everything else hidden, two times give the same picture,
+//     or not).
+// A last page, the cloth's with radii, rods, cables, anchors and one collider of each kind (the box moving) written
+// into its scene, checks the drawing of what no scenario has all of.
 // Run: npm ci && node --test replay.test.mjs (the demo built in Release first: dotnet build -c Release).
 // DEMO_DLL overrides the demo's path, CHROMIUM the browser's, REPLAY_SCREENSHOTS names a folder for a PNG per page.
 import { after, before, describe, it } from "node:test";
@@ -44,9 +49,22 @@ function scenarios() {
   return commands.filter((name) => name !== "convergence");
 }
 
+// What each scenario's page must hold (a subset of window.replay.scene), from the contract's description of it.
+const expected = {
+  "free-fall": { colliders: [], largestRadius: 0, pinned: 0, anchors: 0, springs: 0, rods: 0 },
+  "mass-spring-damper": { colliders: [], anchors: 1, springs: 1, rods: 0 },
+  "two-mass-chain": { colliders: [], anchors: 1, springs: 2, rods: 0 },
+  "cloth": { colliders: [], pinned: 2, rods: 0, triangles: 2 * 10 * 10 },
+  "pendulum": { colliders: [], anchors: 1, rods: 1, springs: 0 },
+  "hanging-chain": { colliders: [], pinned: 2, rods: 10, springs: 0 },
+  "bouncing-ball": { colliders: ["plane"], largestRadius: 0, pinned: 0 },
+  "collision": { colliders: [], largestRadius: 0.1, pinned: 0 },
+  "drape": { colliders: ["sphere"], largestRadius: 0.01, pinned: 0, triangles: 2 * 10 * 10 },
+};
+
 // Each case's page is written up front, so that a scenario the demo refuses (a plain ODE) gets its own one test.
 if (!existsSync(demo)) throw new Error(`the demo is not built at ${demo}: run dotnet build -c Release first`);
-const cases = scenarios().map((name) => ({ name, args: [name], exit: 0 }));
+const cases = scenarios().map((name) => ({ name, args: [name], exit: 0, scene: expected[name] }));
 cases.push({ name: "cloth-32x32", args: ["cloth", "--resolution", "1/31", "--duration", "2"], exit: 0 });
 cases.push({ name: "cloth-diverged", args: ["cloth", "--dt", "0.0166667"], exit: 3 });
 for (const c of cases) {
@@ -57,7 +75,10 @@ for (const c of cases) {
 
 // Every kind of shape the page can draw, before any scenario has them all: the cloth's page with radii, rods,
 // cables (one slack), anchors and the four colliders written into its scene.
-const shapes = { name: "cloth-with-every-shape", file: join(work, "cloth-with-every-shape.html"), exit: 0, plain: false, run: { status: 0, stderr: "" } };
+const shapes = {
+  name: "cloth-with-every-shape", file: join(work, "cloth-with-every-shape.html"), exit: 0, plain: false, run: { status: 0, stderr: "" },
+  scene: { colliders: ["plane", "sphere", "capsule", "box (moving)"], largestRadius: 0.035, rods: 3, cables: 2, anchors: 1 },
+};
 {
   const html = readFileSync(cases.find((c) => c.name === "cloth").file, "utf8");
   const marker = /(<script type="application\/json" id="replay-data">)(.*?)(<\/script>)/s;
@@ -70,10 +91,10 @@ const shapes = { name: "cloth-with-every-shape", file: join(work, "cloth-with-ev
   const unit = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
   const c = Math.cos(0.5), s = Math.sin(0.5);
   data.colliders = [
-    { kind: "plane", center: [0, -1.3, 0], radius: 0, normal: [0, 1, 0], halfExtents: [0, 0, 0], axes: unit },
-    { kind: "sphere", center: [0.5, -0.75, 0.6], radius: 0.22, normal: [0, 0, 0], halfExtents: [0.22, 0.22, 0.22], axes: unit },
-    { kind: "capsule", center: [1.3, -0.6, 0.2], radius: 0.08, normal: [0, 0, 0], halfExtents: [0.08, 0.3, 0.08], axes: [[0, 0, -1], [1, 0, 0], [0, -1, 0]] },
-    { kind: "box", center: [-0.35, -1.0, 0.5], radius: 0, normal: [0, 0, 0], halfExtents: [0.15, 0.25, 0.1], axes: [[c, 0, -s], [0, 1, 0], [s, 0, c]] },
+    { kind: "plane", center: [0, -1.3, 0], radius: 0, halfExtents: [0, 0, 0], axes: unit },
+    { kind: "sphere", center: [0.5, -0.75, 0.6], radius: 0.22, halfExtents: [0, 0, 0], axes: unit },
+    { kind: "capsule", center: [1.3, -0.6, 0.2], radius: 0.08, halfExtents: [0, 0.3, 0], axes: [[0, 0, -1], [1, 0, 0], [0, -1, 0]] },
+    { kind: "box", center: [-0.35, -1.0, 0.5], radius: 0, halfExtents: [0.15, 0.25, 0.1], axes: [[c, 0, -s], [0, 1, 0], [s, 0, c]], velocity: [0.1, 0, 0] },
   ];
   writeFileSync(shapes.file, html.replace(marker, (_, open, __, close) => open + JSON.stringify(data).replace(/</g, "\\u003c") + close));
   cases.push(shapes);
@@ -214,6 +235,49 @@ for (const c of cases.filter((c) => !c.plain)) {
       assert.ok(await differing("before-orbit", "after-orbit") >= 20, "the view turned");
       assert.equal(await page.evaluate(() => window.replay.time), time, "orbiting leaves the time alone");
       assert.deepEqual(problems, []);
+      await page.dblclick("#view");   // back to the home view for the checks that follow
     });
+
+    if (c.scene) {
+      it("holds what the scenario has", async () => {
+        const scene = await page.evaluate(() => window.replay.scene);
+        for (const [key, value] of Object.entries(c.scene)) assert.deepEqual(scene[key], value, key);
+      });
+    }
+
+    if (c.scene?.colliders?.length) {
+      // Shows or hides a part of the picture with its checkbox, as a user does, and waits for the picture.
+      const toggle = async (id, on) => {
+        const box = page.locator("#" + id);
+        if ((await box.isChecked()) === on) return;
+        const before = await rendersNow();
+        await box.setChecked(on);
+        await settled(before);
+      };
+
+      it("draws its colliders, a still one in place and a moving one moving", async () => {
+        const duration = await page.evaluate(() => window.replay.duration);
+        await seekWithSlider(duration / 4);
+        await keep("with-colliders");
+        await toggle("show-colliders", false);
+        await keep("without-colliders");
+        const drawn = await differing("with-colliders", "without-colliders");
+        assert.ok(drawn >= 200, `${drawn} pixels are the colliders'`);
+        await toggle("show-colliders", true);
+        await keep("with-colliders-again");
+        assert.equal(await differing("with-colliders", "with-colliders-again"), 0, "showing them again restores the picture");
+
+        // Only the colliders (and what never moves: pins, anchors, the floor), at two times.
+        for (const id of ["show-surface", "show-links", "show-particles", "show-trails"]) if (await page.locator("#" + id).isVisible()) await toggle(id, false);
+        await keep("colliders-early");
+        await seekWithSlider(duration);
+        await keep("colliders-late");
+        const moved = await differing("colliders-early", "colliders-late");
+        if (c.scene.colliders.some((k) => k.endsWith("(moving)"))) assert.ok(moved >= 20, `a moving collider moved: ${moved} pixels`);
+        else assert.equal(moved, 0, "still colliders stay where they are");
+        for (const id of ["show-surface", "show-links", "show-particles", "show-trails"]) if (await page.locator("#" + id).isVisible()) await toggle(id, true);
+        assert.deepEqual(problems, []);
+      });
+    }
   });
 }

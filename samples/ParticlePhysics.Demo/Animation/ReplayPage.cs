@@ -218,19 +218,25 @@ internal static class ReplayPage
         json.WriteEndObject();
     }
 
-    private static void WriteCollider(Utf8JsonWriter json, ColliderShape c)
+    // The core's ObstacleShape as it reads (a plane's normal is its AxisY), at t = 0, and the velocity it moves at.
+    private static void WriteCollider(Utf8JsonWriter json, ReplayCollider collider)
     {
+        var c = collider.Shape;
         json.WriteStartObject();
         json.WriteString("kind", c.Kind.ToString().ToLowerInvariant());
         WriteVector(json, "center", c.Center);
         WriteNumber(json, "radius", c.Radius);
-        WriteVector(json, "normal", c.Normal);
         WriteVector(json, "halfExtents", c.HalfExtents);
         json.WriteStartArray("axes");
         WriteVector(json, null, c.AxisX);
         WriteVector(json, null, c.AxisY);
         WriteVector(json, null, c.AxisZ);
         json.WriteEndArray();
+        if (collider.Velocity != Vector3d.Zero)
+        {
+            WriteVector(json, "velocity", collider.Velocity);
+        }
+
         json.WriteEndObject();
     }
 

@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using ParticlePhysics.Contacts;
 
 namespace ParticlePhysics.Demo.Animation;
 
@@ -24,16 +25,23 @@ internal enum LinkKind
 internal readonly record struct ReplayLink(int First, int Second, LinkKind Kind, double Length = 0);
 
 /// <summary>
+/// A collider as the replay draws it: the core's description of the obstacle at t = 0 (<see cref="ObstacleShape"/>)
+/// and its velocity. The core moves an obstacle by translation at its velocity, so the page draws it at
+/// <c>Shape.Center + t Velocity</c> at every time t of the run (still when the velocity is zero).
+/// </summary>
+internal readonly record struct ReplayCollider(ObstacleShape Shape, Vector3d Velocity);
+
+/// <summary>
 /// The parts of a replay that do not move with the frames: each particle's radius (0: a point) and whether it is
 /// pinned, the links (springs, rods, cables) by their ends, fixed anchors, a surface to shade (the cloth's
-/// triangles) and the colliders. <see cref="SceneReader"/> fills it from a world.
+/// triangles) and the colliders (the core's obstacle descriptions). <see cref="SceneReader"/> fills it from a world.
 /// </summary>
 internal sealed class ReplayScene
 {
     private readonly List<ReplayLink> _links = new();
     private readonly List<Vector3d> _anchors = new();
     private readonly List<int> _triangles = new();
-    private readonly List<ColliderShape> _colliders = new();
+    private readonly List<ReplayCollider> _colliders = new();
     private readonly List<int> _pinned = new();
 
     public ReplayScene(int particleCount)
@@ -60,8 +68,8 @@ internal sealed class ReplayScene
     /// <summary>A surface to shade: three particle indices per triangle (empty when there is none).</summary>
     public IReadOnlyList<int> Triangles => _triangles;
 
-    /// <summary>The fixed shapes.</summary>
-    public IReadOnlyList<ColliderShape> Colliders => _colliders;
+    /// <summary>The colliders.</summary>
+    public IReadOnlyList<ReplayCollider> Colliders => _colliders;
 
     /// <summary>Marks <paramref name="particle"/> as pinned.</summary>
     public void Pin(int particle)
@@ -119,8 +127,8 @@ internal sealed class ReplayScene
         _triangles.Add(c);
     }
 
-    /// <summary>A fixed shape to draw.</summary>
-    public void AddCollider(ColliderShape collider) => _colliders.Add(collider);
+    /// <summary>A collider to draw: its shape at t = 0 and its velocity (zero for a still one).</summary>
+    public void AddCollider(ObstacleShape shape, Vector3d velocity = default) => _colliders.Add(new ReplayCollider(shape, velocity));
 
     private void CheckParticle(int particle, string name)
     {

@@ -1,14 +1,16 @@
 using ParticlePhysics.Constraints;
+using ParticlePhysics.Contacts;
 using ParticlePhysics.Forces;
 
 namespace ParticlePhysics.Demo.Animation;
 
 /// <summary>
-/// Reads what a replay draws, besides the moving positions, from a freshly built world: the pins, the springs of
-/// its force generators and the rods and cables of its constraint sets (as links by their particles or anchors),
-/// and, for a cloth, its grid as a surface.
-/// This is the one place that knows which core types carry something drawable: a new kind of link, a radius or a
-/// collider joins the replay by a line here.
+/// Reads what a replay draws, besides the moving positions, from a freshly built world: the radii and pins, the
+/// springs of its force generators, the rods and cables of its constraint sets (as links by their particles or
+/// anchors), the obstacles of its contact sets (as the core describes them for renderers, with their velocity), and,
+/// for a cloth, its grid as a surface.
+/// This is the one place that knows which core types carry something drawable: a new kind of link or collider joins
+/// the replay by a case here.
 /// </summary>
 internal static class SceneReader
 {
@@ -23,7 +25,7 @@ internal static class SceneReader
                 scene.Pin(i);
             }
 
-            // Radii: scene.SetRadius(i, world.GetRadius(i)) once the world carries one per particle.
+            scene.SetRadius(i, world.GetRadius(i));
         }
 
         foreach (var force in world.Forces)
@@ -61,8 +63,6 @@ internal static class SceneReader
             }
         }
 
-        // Colliders come from the contact sets, one case per type below: scene.AddCollider(ColliderShape.Plane(point,
-        // normal)), .Sphere(centre, radius), .Capsule(start, end, radius) or .Box(centre, halfExtents, axes or quaternion).
         foreach (var set in world.Constraints)
         {
             switch (set)
@@ -80,6 +80,13 @@ internal static class SceneReader
                         {
                             scene.AddLink(first, second, kind, rods.GetLength(r));
                         }
+                    }
+
+                    break;
+                case ContactSet contacts:
+                    foreach (var obstacle in contacts.Obstacles)
+                    {
+                        scene.AddCollider(obstacle.ShapeAt(0), obstacle.Velocity);
                     }
 
                     break;

@@ -13,7 +13,8 @@ namespace ParticlePhysics.Tests.Demo;
 
 /// <summary>
 /// <c>--animate FILE.html</c> writes one page that holds everything it shows: the frames decode to the run's own
-/// positions (in single precision), at the display rate, with the scene's pins, springs, anchors and surface; it
+/// positions (in single precision), at the display rate, with the scene's pins, springs, rods, anchors, radii,
+/// colliders and surface; it
 /// names nothing on the network. That the page plays in a browser is checked by tests/browser (headless Chromium).
 /// </summary>
 public sealed partial class DemoAnimateTests : IDisposable
@@ -104,6 +105,43 @@ public sealed partial class DemoAnimateTests : IDisposable
         var links = Page.Read(chain).Data;
         Assert.Equal(Enumerable.Range(0, 10).SelectMany(i => new[] { i, i + 1 }), links.GetProperty("links").GetProperty("rod").EnumerateArray().Select(e => e.GetInt32()));
         Assert.Equal(new[] { 0, 10 }, links.GetProperty("pinned").EnumerateArray().Select(e => e.GetInt32()));
+    }
+
+    [Fact]
+    public void Contact_scenarios_carry_their_colliders_and_radii()
+    {
+        var drape = Path.Combine(_folder, "drape.html");
+        var ball = Path.Combine(_folder, "ball.html");
+        var collision = Path.Combine(_folder, "collision.html");
+
+        Assert.Equal(0, DemoProcess.Run("drape", "--duration", "0.05", "--format", "csv", "--animate", drape).ExitCode);
+        Assert.Equal(0, DemoProcess.Run("bouncing-ball", "--radius", "0.1", "--duration", "0.5", "--format", "csv", "--animate", ball).ExitCode);
+        Assert.Equal(0, DemoProcess.Run("collision", "--radius", "0.2", "--duration", "0.5", "--format", "csv", "--animate", collision).ExitCode);
+
+        // The drape: a sphere of radius 0.3 at (S/2, -0.5, S/2), every particle of radius 0.01, the cloth's surface.
+        var data = Page.Read(drape).Data;
+        var sphere = Assert.Single(data.GetProperty("colliders").EnumerateArray());
+        Assert.Equal("sphere", sphere.GetProperty("kind").GetString());
+        Assert.Equal(0.3, sphere.GetProperty("radius").GetDouble());
+        Assert.Equal(new[] { 0.5, -0.5, 0.5 }, sphere.GetProperty("center").EnumerateArray().Select(e => e.GetDouble()));
+        Assert.False(sphere.TryGetProperty("velocity", out _)); // it stands still
+        Assert.All(data.GetProperty("radii").EnumerateArray(), r => Assert.Equal(0.01, r.GetDouble()));
+        Assert.Equal(121, data.GetProperty("radii").GetArrayLength());
+        Assert.Equal(3 * 2 * 10 * 10, data.GetProperty("triangles").GetArrayLength());
+        Assert.Empty(data.GetProperty("pinned").EnumerateArray());
+
+        // The ball: the ground plane y = 0 (its normal is the second axis) and the ball's radius.
+        data = Page.Read(ball).Data;
+        var ground = Assert.Single(data.GetProperty("colliders").EnumerateArray());
+        Assert.Equal("plane", ground.GetProperty("kind").GetString());
+        Assert.Equal(new[] { 0.0, 0, 0 }, ground.GetProperty("center").EnumerateArray().Select(e => e.GetDouble()));
+        Assert.Equal(new[] { 0.0, 1, 0 }, ground.GetProperty("axes")[1].EnumerateArray().Select(e => e.GetDouble()));
+        Assert.Equal(new[] { 0.1 }, data.GetProperty("radii").EnumerateArray().Select(e => e.GetDouble()));
+
+        // The collision: no collider, two particles of the given radius.
+        data = Page.Read(collision).Data;
+        Assert.Equal(0, data.GetProperty("colliders").GetArrayLength());
+        Assert.Equal(new[] { 0.2, 0.2 }, data.GetProperty("radii").EnumerateArray().Select(e => e.GetDouble()));
     }
 
     [Fact]

@@ -3,51 +3,74 @@ using System.IO;
 using System.Linq;
 using System.Text;
 using System.Text.Json;
+using ParticlePhysics.Contacts;
 using ParticlePhysics.Demo.Animation;
 using ParticlePhysics.Demo.Running;
+using ParticlePhysics.Scenarios;
 
 namespace ParticlePhysics.Tests.Demo;
 
 /// <summary>
-/// The replay's scene as plain data: each collider factory gives the shape a physics engine means (against
-/// hand-worked axes), and the page carries radii, links of every kind and colliders as the renderer reads them.
+/// The replay's scene as plain data: it reads the radii and the obstacles of a world's contact sets as the core
+/// describes them (against hand-worked axes), and the page carries radii, links of every kind and colliders (with
+/// a moving one's velocity) as the renderer reads them.
 /// </summary>
 public sealed class ReplaySceneTests
 {
     [Fact]
-    public void A_box_turned_by_a_quaternion_has_the_rotated_axes()
+    public void The_scene_reads_radii_and_every_obstacle_of_a_contact_set_as_the_core_describes_it()
     {
-        // A quarter turn about +y: x goes to -z, z goes to +x.
-        var half = Math.Sqrt(0.5);
-        var box = ColliderShape.Box(new Vector3d(1, 2, 3), new Vector3d(0.5, 1, 2), half, 0, half, 0);
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(0, 1, 0), 1);
+        world.AddParticle(new Vector3d(1, 1, 0), 1);
+        world.SetRadius(1, 0.05);
+        var box = new BoxObstacle(new Vector3d(3, 0, 0), new Vector3d(0.5, 1, 2));
+        box.SetOrientation(new Vector3d(0, 0, -1), new Vector3d(0, 1, 0)); // a quarter turn about +y
+        var sphere = new SphereObstacle(new Vector3d(0, -1, 0), 0.3) { Velocity = new Vector3d(0, 0, 2), ReferenceTime = 1 };
+        var contacts = new ContactSet();
+        contacts.Add(PlaneObstacle.Ground());
+        contacts.Add(sphere);
+        contacts.Add(new CapsuleObstacle(new Vector3d(0, 0, 0), new Vector3d(3, 4, 0), 0.25));
+        contacts.Add(box);
+        world.AddConstraints(contacts);
 
-        AssertClose(new Vector3d(0, 0, -1), box.AxisX);
-        AssertClose(new Vector3d(0, 1, 0), box.AxisY);
-        AssertClose(new Vector3d(1, 0, 0), box.AxisZ);
-        Assert.Equal(ColliderKind.Box, box.Kind);
-        Assert.Equal(new Vector3d(0.5, 1, 2), box.HalfExtents);
-    }
+        var scene = SceneReader.Read(world);
 
-    [Fact]
-    public void A_capsule_from_a_segment_is_centred_on_it_along_its_local_y()
-    {
-        var capsule = ColliderShape.Capsule(new Vector3d(0, 0, 0), new Vector3d(3, 4, 0), 0.25);
-
-        Assert.Equal(new Vector3d(1.5, 2, 0), capsule.Center);
+        Assert.Equal(new[] { 0, 0.05 }, scene.Radii);
+        Assert.Equal(new[] { ObstacleKind.Plane, ObstacleKind.Sphere, ObstacleKind.Capsule, ObstacleKind.Box }, scene.Colliders.Select(c => c.Shape.Kind));
+        AssertClose(new Vector3d(0, 1, 0), scene.Colliders[0].Shape.AxisY); // the plane's normal
+        // The moving sphere is where it is at t = 0 (1 s before its reference time, at 2 m/s along z), with its velocity.
+        AssertClose(new Vector3d(0, -1, -2), scene.Colliders[1].Shape.Center);
+        Assert.Equal(new Vector3d(0, 0, 2), scene.Colliders[1].Velocity);
+        Assert.Equal(0.3, scene.Colliders[1].Shape.Radius);
+        var capsule = scene.Colliders[2].Shape;
+        AssertClose(new Vector3d(1.5, 2, 0), capsule.Center);
         AssertClose(new Vector3d(0.6, 0.8, 0), capsule.AxisY);
-        Assert.Equal(2.5, capsule.HalfExtents.Y);
+        Assert.Equal(2.5, capsule.HalfExtents.Y, 12);
         Assert.Equal(0.25, capsule.Radius);
-        Assert.Equal(0, Vector3d.Dot(capsule.AxisX, capsule.AxisY), 12);
-        Assert.Equal(0, Vector3d.Dot(capsule.AxisZ, capsule.AxisY), 12);
-        Assert.Equal(0, Vector3d.Dot(capsule.AxisX, capsule.AxisZ), 12);
+        var turned = scene.Colliders[3].Shape;
+        AssertClose(new Vector3d(0, 0, -1), turned.AxisX);
+        AssertClose(new Vector3d(0, 1, 0), turned.AxisY);
+        AssertClose(new Vector3d(1, 0, 0), turned.AxisZ);
+        Assert.Equal(new Vector3d(0.5, 1, 2), turned.HalfExtents);
+        Assert.All(scene.Colliders.Where(c => c.Shape.Kind != ObstacleKind.Sphere), c => Assert.Equal(Vector3d.Zero, c.Velocity));
     }
 
     [Fact]
-    public void A_plane_keeps_a_unit_normal_and_a_zero_normal_is_refused()
+    public void The_drape_scene_has_its_sphere_and_the_radius_of_every_particle()
     {
-        AssertClose(new Vector3d(0, 1, 0), ColliderShape.Plane(Vector3d.Zero, new Vector3d(0, 5, 0)).Normal);
-        var error = Assert.Throws<ArgumentException>(() => ColliderShape.Plane(Vector3d.Zero, Vector3d.Zero));
-        Assert.Equal("normal", error.ParamName);
+        var drape = new DrapeScenario();
+        var n = drape.Cloth.ParticlesPerSide;
+
+        var scene = SceneReader.Read(drape.Build(), n);
+
+        var collider = Assert.Single(scene.Colliders);
+        Assert.Equal(ObstacleKind.Sphere, collider.Shape.Kind);
+        Assert.Equal(drape.SphereCenter, collider.Shape.Center);
+        Assert.Equal(drape.SphereRadius, collider.Shape.Radius);
+        Assert.All(scene.Radii, r => Assert.Equal(drape.Radius, r));
+        Assert.Empty(scene.Pinned); // the drape pins nothing by default
+        Assert.Equal(2 * (n - 1) * (n - 1), scene.Triangles.Count / 3);
     }
 
     [Fact]
@@ -75,7 +98,7 @@ public sealed class ReplaySceneTests
         scene.AddLink(0, 1, LinkKind.Rod, 1);
         scene.AddAnchoredLink(1, new Vector3d(0, 2, 0), LinkKind.Cable, 3);
         scene.AddLink(1, 0, LinkKind.Spring);
-        scene.AddCollider(ColliderShape.Sphere(new Vector3d(0, -1, 0), 0.5));
+        scene.AddCollider(new SphereObstacle(new Vector3d(0, -1, 0), 0.5).Shape, new Vector3d(1, 0, 0));
         using var page = new MemoryStream();
 
         ReplayPage.Write(page, scene, recorder, "two <particles>", "a test", "final state");
@@ -97,6 +120,7 @@ public sealed class ReplaySceneTests
         Assert.Equal(0.5, sphere.GetProperty("radius").GetDouble());
         Assert.Equal(new[] { 0.0, -1, 0 }, sphere.GetProperty("center").EnumerateArray().Select(e => e.GetDouble()));
         Assert.Equal(3, sphere.GetProperty("axes").GetArrayLength());
+        Assert.Equal(new[] { 1.0, 0, 0 }, sphere.GetProperty("velocity").EnumerateArray().Select(e => e.GetDouble()));
         Assert.Equal(new[] { 0, 0.5, 1 }, data.GetProperty("times").EnumerateArray().Select(e => e.GetDouble()));
         Assert.Equal("completed", data.GetProperty("status").GetString());
     }
