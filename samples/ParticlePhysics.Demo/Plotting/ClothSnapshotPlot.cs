@@ -2,6 +2,7 @@ using System;
 using System.Collections.Generic;
 using System.Globalization;
 using System.Linq;
+using ParticlePhysics.Contacts;
 using ParticlePhysics.Demo.Output;
 using ParticlePhysics.Demo.Running;
 
@@ -11,7 +12,8 @@ namespace ParticlePhysics.Demo.Plotting;
 /// Snapshots of the cloth (t = 0, T/3, 2T/3 and the end, or the last good state of a diverged run) in two rows:
 /// seen from the front (the x-y projection of its grid lines, with axes in metres, one scale for all and equal on
 /// both axes), and in perspective (a shaded surface, front and back in two colours, over a floor grid at its lowest
-/// point). Pinned particles are marked in both. Large meshes are thinned to about 40 grid lines each way in front
+/// point). Pinned particles are marked in both, and the world's sphere obstacles (the drape's) are drawn in both,
+/// read from its contact sets. Large meshes are thinned to about 40 grid lines each way in front
 /// and 24 in perspective, to keep the file small. A snapshot that has blown up (a diverged run's last ones) gets a
 /// scale of its own, said under it, so that the others keep theirs.
 /// </summary>
@@ -65,17 +67,20 @@ internal sealed class ClothSnapshotPlot : IRunPlot
         var n = _setup.ParticlesPerSide;
         var world = _setup.BuildWorld();
         var pinned = Enumerable.Range(0, world.Count).Where(world.IsPinned).ToArray();
+        var spheres = world.Constraints.OfType<ContactSet>().SelectMany(set => set.Obstacles)
+            .Select(o => o.ShapeAt(0)).Where(shape => shape.Kind == ObstacleKind.Sphere).ToArray();
 
         // One scale for the snapshots that have not blown up (within 5 times the first one's size).
         var first = Extent(shots[0]);
         var shared = shots.Where(s => Extent(s) <= 5 * Math.Max(first, 1e-9)).ToList();
         var (low, high) = Bounds(shared);
-        var circle = _setup.Circle;
-        if (circle is { } c)
+        foreach (var sphere in spheres)
         {
-            // The obstacle seen from the front is part of the picture: the window holds it too.
-            low = new Vector3d(Math.Min(low.X, c.X - c.Radius), Math.Min(low.Y, c.Y - c.Radius), low.Z);
-            high = new Vector3d(Math.Max(high.X, c.X + c.Radius), Math.Max(high.Y, c.Y + c.Radius), high.Z);
+            // The obstacles are part of the picture: the window holds them too.
+            var reach = new Vector3d(sphere.Radius, sphere.Radius, sphere.Radius);
+            var (a, b) = (sphere.Center - reach, sphere.Center + reach);
+            low = new Vector3d(Math.Min(low.X, a.X), Math.Min(low.Y, a.Y), Math.Min(low.Z, a.Z));
+            high = new Vector3d(Math.Max(high.X, b.X), Math.Max(high.Y, b.Y), Math.Max(high.Z, b.Z));
         }
 
         var title = $"{_setup.Name}: {n} x {n} particles, {_plan.Integrator}, dt = {Numbers.Brief(_plan.Dt)} s"
@@ -90,8 +95,9 @@ internal sealed class ClothSnapshotPlot : IRunPlot
         var svg = new SvgCanvas(width, height);
         svg.Rect(0, 0, width, height, "white");
         svg.Text(width / 2, 26, title, "middle", TitleSize, weight: "bold");
-        svg.Text(width / 2, 46, "front view (x-y), one scale, equal on both axes; pinned particles in red", "middle", 12, fill: "#444");
-        svg.Text(width / 2, perspectiveTop - 12, "perspective view: the surface, front side blue, back side orange, over a floor grid", "middle", 12, fill: "#444");
+        var obstacle = spheres.Length == 0 ? string.Empty : spheres.Length == 1 ? "; the sphere in grey" : "; the spheres in grey";
+        svg.Text(width / 2, 46, "front view (x-y), one scale, equal on both axes" + (pinned.Length > 0 ? "; pinned particles in red" : string.Empty) + obstacle, "middle", 12, fill: "#444");
+        svg.Text(width / 2, perspectiveTop - 12, "perspective view: the surface, front side blue, back side orange, over a floor grid" + obstacle, "middle", 12, fill: "#444");
 
         var camera = OrbitProjection.Fitting(low, high, Yaw, Pitch);
         for (var p = 0; p < shots.Count; p++)
@@ -100,10 +106,10 @@ internal sealed class ClothSnapshotPlot : IRunPlot
             var own = !shared.Contains(shot);
             var (lo, hi) = own ? Bounds(new[] { shot }) : (low, high);
             var x = left0 + (p * column) + AxisLeft;
-            FrontPanel(svg, shot, pinned, n, x, frontTop, lo, hi, own ? null : circle);
+            FrontPanel(svg, shot, pinned, n, x, frontTop, lo, hi, own ? Array.Empty<ObstacleShape>() : spheres);
             var label = $"t = {Numbers.Brief(shot.Time)} s" + (own ? " (own scale: blown up)" : string.Empty);
             svg.Text(x + (Panel / 2), frontTop + Panel + AxisBottom + 4, label, "middle", 13, fill: own ? PinColor : "#222");
-            PerspectivePanel(svg, shot, pinned, n, x, perspectiveTop, own ? OrbitProjection.Fitting(lo, hi, Yaw, Pitch) : camera, lo, hi);
+            PerspectivePanel(svg, shot, pinned, n, x, perspectiveTop, own ? OrbitProjection.Fitting(lo, hi, Yaw, Pitch) : camera, lo, hi, own ? Array.Empty<ObstacleShape>() : spheres);
             svg.Text(x + (Panel / 2), perspectiveTop + Panel + 20, label, "middle", 13, fill: own ? PinColor : "#222");
         }
 
@@ -111,7 +117,7 @@ internal sealed class ClothSnapshotPlot : IRunPlot
         return svg.ToString();
     }
 
-    private static void FrontPanel(SvgCanvas svg, Snapshot shot, int[] pinned, int n, double left, double top, Vector3d low, Vector3d high, (double X, double Y, double Radius)? circle)
+    private static void FrontPanel(SvgCanvas svg, Snapshot shot, int[] pinned, int n, double left, double top, Vector3d low, Vector3d high, ObstacleShape[] spheres)
     {
         // A square window on the x-y extent, so that one metre is as long across as up.
         var span = Math.Max(Math.Max(high.X - low.X, high.Y - low.Y), 1e-9) * 1.08;
@@ -137,10 +143,11 @@ internal sealed class ClothSnapshotPlot : IRunPlot
         svg.Text(left + Panel - 2, top + Panel + 28, "x (m)", "end", 10, fill: "#444");
         svg.Text(left - 6, top - 6, "y (m)", "end", 10, fill: "#444");
         svg.BeginClip(left, top, Panel, Panel);
-        if (circle is { } sphere)
+        foreach (var sphere in spheres)
         {
             // The obstacle seen from the front, behind the mesh.
-            svg.Polyline(Enumerable.Range(0, 97).Select(k => (Px(sphere.X + (sphere.Radius * Math.Cos(k * Math.PI / 48))), Py(sphere.Y + (sphere.Radius * Math.Sin(k * Math.PI / 48))))), "#999999", 1.5);
+            var (sx, sy, sr) = (sphere.Center.X, sphere.Center.Y, sphere.Radius);
+            svg.Polyline(Enumerable.Range(0, 97).Select(k => (Px(sx + (sr * Math.Cos(k * Math.PI / 48))), Py(sy + (sr * Math.Sin(k * Math.PI / 48))))), "#999999", 1.5);
         }
 
         var lines = Thinned(n, 40);
@@ -162,7 +169,7 @@ internal sealed class ClothSnapshotPlot : IRunPlot
         svg.EndGroup();
     }
 
-    private static void PerspectivePanel(SvgCanvas svg, Snapshot shot, int[] pinned, int n, double left, double top, OrbitProjection camera, Vector3d low, Vector3d high)
+    private static void PerspectivePanel(SvgCanvas svg, Snapshot shot, int[] pinned, int n, double left, double top, OrbitProjection camera, Vector3d low, Vector3d high, ObstacleShape[] spheres)
     {
         svg.Rect(left, top, Panel, Panel, "#f6f7f9", "#999");
 
@@ -202,7 +209,7 @@ internal sealed class ClothSnapshotPlot : IRunPlot
         var lines = Thinned(n, 24);
         var light = camera.Up - (0.5 * camera.Right) - camera.Forward;
         light /= light.Length;
-        var quads = new List<(double Depth, (double X, double Y)[] Points, string Fill)>();
+        var quads = new List<(double Depth, (double X, double Y)[] Points, string Fill, bool Behind)>();
         for (var r = 0; r + 1 < lines.Length; r++)
         {
             for (var c = 0; c + 1 < lines.Length; c++)
@@ -222,11 +229,32 @@ internal sealed class ClothSnapshotPlot : IRunPlot
 
                 var lit = 0.38 + (0.76 * Math.Abs(Vector3d.Dot(normal, light)));
                 var rgb = facing ? _front : _back;
-                quads.Add((screen.Average(s => s.Depth), screen.Select(s => (s.X, s.Y)).ToArray(), Shade(rgb, lit)));
+                var middle = 0.25 * (world[0] + world[1] + world[2] + world[3]);
+                quads.Add((screen.Average(s => s.Depth), screen.Select(s => (s.X, s.Y)).ToArray(), Shade(rgb, lit), Hidden(middle)));
             }
         }
 
-        foreach (var (_, points, fill) in quads.OrderByDescending(q => q.Depth))
+        // A sphere is a disc; a quad whose centre it hides from the eye (the ray to the centre meets the sphere
+        // first) is drawn before it, every other quad after it, each group farthest first.
+        bool Hidden(Vector3d point) => spheres.Any(sphere => HiddenBy(sphere, camera.Eye, point));
+        var ordered = quads.OrderByDescending(q => q.Depth).ToList();
+        foreach (var (_, points, fill, _) in ordered.Where(q => q.Behind))
+        {
+            svg.Polygon(points, fill, "rgba(20,35,55,0.35)", 0.6);
+        }
+
+        foreach (var sphere in spheres)
+        {
+            var (cx, cy, depth) = Screen(sphere.Center);
+            if (depth > 0)
+            {
+                var r = Math.Abs(Screen(sphere.Center + (sphere.Radius * camera.Right)).X - cx);
+                svg.Circle(cx, cy, r, "rgb(150,158,168)", "rgb(110,116,124)", 0.8);
+                svg.Circle(cx - (0.3 * r), cy - (0.3 * r), 0.45 * r, "rgba(255,255,255,0.35)");
+            }
+        }
+
+        foreach (var (_, points, fill, _) in ordered.Where(q => !q.Behind))
         {
             svg.Polygon(points, fill, "rgba(20,35,55,0.35)", 0.6);
         }
@@ -239,6 +267,32 @@ internal sealed class ClothSnapshotPlot : IRunPlot
 
         svg.EndGroup();
         Triad(svg, camera, left + 22, top + Panel - 20);
+    }
+
+    /// <summary>
+    /// Whether <paramref name="sphere"/> stands between <paramref name="eye"/> and <paramref name="point"/>: the ray
+    /// eye + s d (d the unit direction to the point, s from 0 to the point's distance L) meets the sphere where
+    /// |eye + s d - c|^2 = R^2, s = b - sqrt(b^2 - |eye - c|^2 + R^2) with b = d . (c - eye), when 0 &lt; s &lt; L.
+    /// </summary>
+    private static bool HiddenBy(ObstacleShape sphere, Vector3d eye, Vector3d point)
+    {
+        var to = point - eye;
+        var length = to.Length;
+        if (!(length > 0))
+        {
+            return false;
+        }
+
+        var d = to / length;
+        var b = Vector3d.Dot(d, sphere.Center - eye);
+        var discriminant = (b * b) - (sphere.Center - eye).LengthSquared + (sphere.Radius * sphere.Radius);
+        if (discriminant < 0)
+        {
+            return false;
+        }
+
+        var s = b - Math.Sqrt(discriminant);
+        return s > 0 && s < length - (1e-9 * length);
     }
 
     /// <summary>The world axes as seen by the camera: x red, y green, z blue.</summary>

@@ -11,7 +11,9 @@ internal sealed record SeriesStyle(string Color, double Width = 2, string? Dash 
 /// An x-y chart of a few series with ticks, axis labels, a title and a legend; either axis may be logarithmic.
 /// Series are drawn in the order they were added, so the last one lies on top. Reference lines of a given slope
 /// on log-log axes (error against dt: slope p for order p) are drawn thin, grey and dotted under the series.
-/// The canvas grows to fit the title and the legend, so that no text is clipped; the plot area clips the lines.
+/// The canvas grows to fit the title and the legend, so that no text is clipped. The reference lines are clipped to
+/// the plot area; the series to a few pixels more, so that a curve or a marker on the frame (a height that starts at
+/// a tick) shows whole.
 /// </summary>
 internal sealed class LineChart
 {
@@ -25,6 +27,7 @@ internal sealed class LineChart
     /// <summary>Dash patterns in the order series take them (solid first).</summary>
     public static readonly string?[] Dashes = { null, "9 4", "3 3", "12 3 3 3", "6 3 1 3", "2 5", "14 4 2 4 2 4" };
 
+    private const double Overhang = 8;
     private const double PlotWidth = 560, PlotHeight = 360, Top = 46, Bottom = 58, TitleSize = 15, LabelSize = 11;
     private readonly List<Series> _series = new();
     private readonly List<Reference> _references = new();
@@ -87,18 +90,22 @@ internal sealed class LineChart
         svg.Text(left + (PlotWidth / 2), Top + PlotHeight + 44, XLabel, "middle", 13);
         svg.Text(20, Top + (PlotHeight / 2), YLabel, "middle", 13, rotate: -90);
 
+        var drawn = _series.Select(s => Enumerable.Range(0, Math.Min(s.X.Count, s.Y.Count))
+            .Where(i => Usable(s.X[i], LogX) && Usable(s.Y[i], LogY))
+            .Select(i => (Px(s.X[i]), Py(s.Y[i])))
+            .ToArray()).ToArray();
         svg.BeginClip(left, Top, PlotWidth, PlotHeight);
         foreach (var r in _references)
         {
-            DrawReference(svg, r, xAxis, yAxis, Px, Py);
+            DrawReference(svg, r, xAxis, yAxis, Px, Py, drawn.SelectMany(p => p).ToArray());
         }
 
-        foreach (var s in _series)
+        svg.EndGroup();
+        svg.BeginClip(left - Overhang, Top - Overhang, PlotWidth + (2 * Overhang), PlotHeight + (2 * Overhang));
+        for (var k = 0; k < _series.Count; k++)
         {
-            var points = Enumerable.Range(0, Math.Min(s.X.Count, s.Y.Count))
-                .Where(i => Usable(s.X[i], LogX) && Usable(s.Y[i], LogY))
-                .Select(i => (Px(s.X[i]), Py(s.Y[i])))
-                .ToArray();
+            var s = _series[k];
+            var points = drawn[k];
             svg.Polyline(points, s.Style.Color, s.Style.Width, s.Style.Dash);
             if (s.Style.Marker != MarkerShape.None)
             {
@@ -128,24 +135,47 @@ internal sealed class LineChart
         return svg.ToString();
     }
 
-    private static void DrawReference(SvgCanvas svg, Reference r, Axis xAxis, Axis yAxis, Func<double, double> px, Func<double, double> py)
+    private static void DrawReference(
+        SvgCanvas svg, Reference r, Axis xAxis, Axis yAxis, Func<double, double> px, Func<double, double> py, (double X, double Y)[] data)
     {
         // y = y0 (x / x0)^p across the x axis; the clip keeps what leaves the plot area out.
         var (low, high) = (xAxis.Low, xAxis.High);
         double Y(double x) => r.Y * Math.Pow(x / r.X, r.Slope);
         svg.Line(px(low), py(Y(low)), px(high), py(Y(high)), "#777", 1.1, "1.5 3");
 
-        // The label where the line is inside the plot, near its lower (left) end.
-        for (var k = 0; k <= 20; k++)
+        // The label just above the line, where the line is inside the plot, at the place farthest from every data
+        // point (so that it covers no marker); the leftmost such place on a tie.
+        var width = SvgCanvas.TextWidth(r.Label, 10);
+        (double X, double Y)? best = null;
+        var bestGap = double.NegativeInfinity;
+        for (var k = 0; k <= 40; k++)
         {
-            var x = xAxis.At(0.04 + (0.04 * k));
+            var x = xAxis.At(0.02 + (0.02 * k));
             var f = yAxis.Fraction(Y(x));
-            if (f > 0.04 && f < 0.92)
+            if (!(f > 0.04 && f < 0.92) || xAxis.Fraction(x) > 1 - ((width + 8) / PlotWidth))
             {
-                svg.Text(px(x) + 4, py(Y(x)) - 6, r.Label, "start", 10, fill: "#555");
-                return;
+                continue;
+            }
+
+            var (tx, ty) = (px(x) + 4, py(Y(x)) - 6);
+            var gap = data.Length == 0 ? double.PositiveInfinity : data.Min(p => DistanceToBox(p, tx, ty - 9, width, 11));
+            if (gap > bestGap + 0.5)
+            {
+                (best, bestGap) = ((tx, ty), gap);
             }
         }
+
+        if (best is { } at)
+        {
+            svg.Text(at.X, at.Y, r.Label, "start", 10, fill: "#555");
+        }
+    }
+
+    private static double DistanceToBox((double X, double Y) p, double left, double top, double width, double height)
+    {
+        var dx = Math.Max(Math.Max(left - p.X, 0), p.X - (left + width));
+        var dy = Math.Max(Math.Max(top - p.Y, 0), p.Y - (top + height));
+        return Math.Sqrt((dx * dx) + (dy * dy));
     }
 
     private static bool Usable(double value, bool logarithmic) => double.IsFinite(value) && (!logarithmic || value > 0);

@@ -103,6 +103,68 @@ public sealed class DemoPlotTests : IDisposable
     }
 
     [Fact]
+    public void A_drape_plot_draws_the_sphere_in_every_panel()
+    {
+        var path = Path.Combine(_folder, "drape.svg");
+
+        var result = DemoProcess.Run("drape", "--plot", path, "--duration", "0.3", "--format", "csv");
+
+        Assert.Equal(0, result.ExitCode);
+        var document = XDocument.Load(path);
+        Assert.StartsWith("drape: 11 x 11 particles", document.Descendants(_svg + "text").First().Value, StringComparison.Ordinal);
+
+        // Front: the sphere's outline (a closed grey polyline) in each of the four panels, besides the 22 grid lines;
+        // perspective: a grey disc in each.
+        var grey = document.Descendants(_svg + "polyline").Count(l => (string?)l.Attribute("stroke") == "#999999");
+        Assert.Equal(4, grey);
+        Assert.Equal(4, document.Descendants(_svg + "circle").Count(c => (string?)c.Attribute("fill") == "rgb(150,158,168)"));
+        Assert.Equal(0, document.Descendants(_svg + "rect").Count(r => (string?)r.Attribute("fill") == "#C62828")); // no pins
+        AssertNothingClipped(document);
+    }
+
+    [Fact]
+    public void Convergence_on_the_pendulum_has_its_reference_slopes_clear_of_the_markers()
+    {
+        var path = Path.Combine(_folder, "pendulum.svg");
+
+        var result = DemoProcess.Run("convergence", "pendulum", "--plot", path);
+
+        Assert.Equal(0, result.ExitCode);
+        var document = XDocument.Load(path);
+        var labels = document.Descendants(_svg + "text").Where(t => t.Value.StartsWith("slope ", StringComparison.Ordinal)).ToArray();
+        Assert.Equal(new[] { "slope 1", "slope 2", "slope 4" }, labels.Select(t => t.Value).Order());
+
+        // No marker (their polylines' points) lies under a label's box (0.6 em a character, 10 px high).
+        var points = document.Descendants(_svg + "polyline").Where(p => p.Attribute("stroke-dasharray")?.Value != "1.5 3")
+            .SelectMany(p => ((string)p.Attribute("points")!).Split(' ')).Select(Point).ToArray();
+        foreach (var label in labels)
+        {
+            double At(string name) => double.Parse((string)label.Attribute(name)!, CultureInfo.InvariantCulture);
+            var (x, y, width) = (At("x"), At("y"), label.Value.Length * 10 * 0.6);
+            Assert.DoesNotContain(points, p => p.X > x - 4 && p.X < x + width + 4 && p.Y > y - 14 && p.Y < y + 4);
+        }
+
+        AssertNothingClipped(document);
+    }
+
+    [Fact]
+    public void A_curve_on_the_frame_is_not_cut_by_it()
+    {
+        var path = Path.Combine(_folder, "pendulum.svg");
+
+        var result = DemoProcess.Run("pendulum", "--plot", path, "--format", "csv");
+
+        // The bob starts at y = 0, the top of the axis: the series' clip reaches past the frame, the references' not.
+        Assert.Equal(0, result.ExitCode);
+        var document = XDocument.Load(path);
+        var frame = document.Descendants(_svg + "rect").Single(r => (string?)r.Attribute("stroke") == "#333");
+        var clip = document.Descendants(_svg + "clipPath").Last().Element(_svg + "rect")!;
+        double Of(XElement e, string name) => double.Parse((string)e.Attribute(name)!, CultureInfo.InvariantCulture);
+        Assert.True(Of(clip, "y") <= Of(frame, "y") - 6, "the clip leaves room for a marker on the top edge");
+        Assert.True(Of(clip, "x") <= Of(frame, "x") - 6, "and on the left edge");
+    }
+
+    [Fact]
     public void A_diverged_run_still_writes_a_plot_of_what_it_computed()
     {
         var path = Path.Combine(_folder, "diverged.svg");
@@ -113,6 +175,12 @@ public sealed class DemoPlotTests : IDisposable
         var document = XDocument.Load(path);
         Assert.Contains("diverged", document.Descendants(_svg + "text").First().Value, StringComparison.Ordinal);
         AssertNothingClipped(document);
+    }
+
+    private static (double X, double Y) Point(string pair)
+    {
+        var parts = pair.Split(',');
+        return (double.Parse(parts[0], CultureInfo.InvariantCulture), double.Parse(parts[1], CultureInfo.InvariantCulture));
     }
 
     private static double Width(XElement element) => double.Parse((string)element.Attribute("stroke-width")!, CultureInfo.InvariantCulture);
