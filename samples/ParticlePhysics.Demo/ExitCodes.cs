@@ -11,4 +11,7 @@ internal static class ExitCodes
 
     /// <summary>The simulation diverged: the rows already printed stay, one "error:" line on stderr.</summary>
     public const int Diverged = 3;
+
+    /// <summary>Ctrl-C stopped the run: the rows already printed stay (128 + SIGINT, as shells report it).</summary>
+    public const int Interrupted = 130;
 }

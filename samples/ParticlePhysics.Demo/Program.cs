@@ -2,6 +2,7 @@ using System;
 using System.CommandLine;
 using System.IO;
 using System.Text;
+using System.Threading;
 using ParticlePhysics.Demo.Cli;
 
 namespace ParticlePhysics.Demo;
@@ -14,11 +15,24 @@ internal static class Program
 {
     private static int Main(string[] args)
     {
-        // A buffered stdout: csv of a big cloth is megabytes, and Console.Out flushes every write.
+        // A buffered stdout: csv of a big cloth is megabytes, and Console.Out flushes every write. On a terminal the
+        // scenario command flushes after each row, so that rows show as they are computed.
         using var output = new StreamWriter(Console.OpenStandardOutput(), new UTF8Encoding(false), 1 << 16) { AutoFlush = false };
+
+        // The first Ctrl-C asks the run to stop after its current step (the rows so far are kept, exit code 130);
+        // a second one, while the demo is still finishing, ends the process at once.
+        using var interrupt = new CancellationTokenSource();
+        Console.CancelKeyPress += (_, e) =>
+        {
+            if (!interrupt.IsCancellationRequested)
+            {
+                e.Cancel = true;
+                interrupt.Cancel();
+            }
+        };
         try
         {
-            return Run(args, output, Console.Error, errorIsTerminal: !Console.IsErrorRedirected);
+            return Run(args, output, Console.Error, !Console.IsErrorRedirected, !Console.IsOutputRedirected, interrupt.Token);
         }
         finally
         {
@@ -26,14 +40,17 @@ internal static class Program
         }
     }
 
-    /// <summary>Runs the demo with <paramref name="args"/>; returns the exit code (0 ok, 2 bad command line, 3 diverged).</summary>
+    /// <summary>Runs the demo with <paramref name="args"/>; returns the exit code (0 ok, 2 bad command line, 3 diverged, 130 interrupted).</summary>
     /// <param name="args">The command line, without the program name.</param>
     /// <param name="output">Receives the results (stdout).</param>
     /// <param name="error">Receives the error line and, when <paramref name="errorIsTerminal"/>, the progress indicator.</param>
     /// <param name="errorIsTerminal">True when <paramref name="error"/> is a terminal.</param>
-    internal static int Run(string[] args, TextWriter output, TextWriter error, bool errorIsTerminal = false)
+    /// <param name="outputIsTerminal">True when <paramref name="output"/> is a terminal: rows are flushed one by one.</param>
+    /// <param name="cancellation">Ctrl-C: stops a run between two steps, keeping the rows so far (exit code 130).</param>
+    internal static int Run(
+        string[] args, TextWriter output, TextWriter error, bool errorIsTerminal = false, bool outputIsTerminal = false, CancellationToken cancellation = default)
     {
-        var context = new DemoContext(output, error, errorIsTerminal);
+        var context = new DemoContext(output, error, errorIsTerminal, outputIsTerminal, cancellation);
         var root = DemoCommandLine.Build(context);
         try
         {

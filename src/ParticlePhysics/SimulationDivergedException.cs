@@ -7,7 +7,8 @@ namespace ParticlePhysics;
 /// <summary>
 /// Thrown when a step produces a state that is not finite (NaN or infinite), or whose magnitude passes the
 /// system's divergence limit. The system is left at its last good state and time, so the caller can retry with a
-/// smaller time step or a more stable integrator.
+/// smaller time step or with <see cref="Integrators.ImplicitEuler"/> (<c>implicit-euler</c> in
+/// <see cref="Integrators.IntegratorCatalog"/>), which stays stable at large steps on stiff springs.
 /// </summary>
 public sealed class SimulationDivergedException : Exception
 {
@@ -60,7 +61,7 @@ public sealed class SimulationDivergedException : Exception
         return string.Format(
             CultureInfo.InvariantCulture,
             "The simulation diverged at t={0:R}: {1} {2}. The system was left at its last good state, t={3:R}; "
-            + "retry with a smaller time step or a more stable integrator (implicit-euler).",
+            + "retry with a smaller time step, or with ImplicitEuler (implicit-euler), which stays stable at large steps.",
             time,
             what,
             how,

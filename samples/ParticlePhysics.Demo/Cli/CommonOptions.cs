@@ -18,6 +18,11 @@ internal sealed class CommonOptions
         Every = Options.Count("--every", "Print every N-th step (and always step 0 and the last) [default: near 200 rows]", 1);
         Format = Options.Choice("--format", "Output: aligned table for people, csv or json for programs", OutputFormat.Default, OutputFormat.Names.ToArray());
         Plot = PlotOption("A chart of the run: the trajectory against the exact solution, or snapshots of the cloth mesh");
+        Animate = new Option<string?>("--animate")
+        {
+            Description = "A self-contained HTML page that replays the run in 3D in a browser (particles, springs, pins; play, pause, time slider, orbiting camera)",
+            HelpName = "FILE.html",
+        };
         Tolerance = Options.Number("--tolerance", "rk45's error bound per internal step (relative to 1 + |y|)", string.Empty, 1e-8, NumberRule.Positive);
         Substeps = scenario.IsPlainOde ? null : SubstepsOption();
     }
@@ -34,6 +39,8 @@ internal sealed class CommonOptions
 
     public Option<string?> Plot { get; }
 
+    public Option<string?> Animate { get; }
+
     public Option<double> Tolerance { get; }
 
     /// <summary><c>--substeps</c>, for particle scenarios only (xpbd needs positions and velocities).</summary>
@@ -41,8 +48,8 @@ internal sealed class CommonOptions
 
     public IEnumerable<Option> All =>
         Substeps is null
-            ? new Option[] { Integrator, Dt, Duration, Every, Format, Plot, Tolerance }
-            : new Option[] { Integrator, Dt, Duration, Every, Format, Plot, Tolerance, Substeps };
+            ? new Option[] { Integrator, Dt, Duration, Every, Format, Plot, Animate, Tolerance }
+            : new Option[] { Integrator, Dt, Duration, Every, Format, Plot, Animate, Tolerance, Substeps };
 
     /// <summary><c>--substeps N</c>: xpbd's substeps per step, a whole number from 1 to 1000 (default 10).</summary>
     public static Option<int?> SubstepsOption() =>

@@ -15,7 +15,8 @@ namespace ParticlePhysics.Demo.Output;
 ///   "diverged": null }
 /// </code>
 /// <c>error</c> is null without an exact solution; <c>diverged</c> is <c>{ "t": ..., "message": ... }</c> when a
-/// step diverged, and <c>summary</c> then describes the last good state. Non-finite numbers are written as null.
+/// step diverged, and <c>summary</c> then describes the last good state; a run stopped by Ctrl-C adds
+/// <c>"interrupted": true</c> after it. Non-finite numbers are written as null.
 /// </summary>
 internal sealed class JsonRunWriter : IRunWriter
 {
@@ -100,12 +101,15 @@ internal sealed class JsonRunWriter : IRunWriter
         o.WriteLine(" } },");
         if (outcome.Diverged is { } d)
         {
-            o.WriteLine($"  \"diverged\": {{ \"t\": {Numbers.Json(d.Time)}, \"message\": {JsonText.String(d.Exception.Message)} }}");
+            o.Write($"  \"diverged\": {{ \"t\": {Numbers.Json(d.Time)}, \"message\": {JsonText.String(d.Exception.Message)} }}");
         }
         else
         {
-            o.WriteLine("  \"diverged\": null");
+            o.Write("  \"diverged\": null");
         }
+
+        // Ctrl-C: the document still closes, and says so.
+        o.WriteLine(outcome.Interrupted ? ",\n  \"interrupted\": true" : string.Empty);
 
         o.WriteLine("}");
         o.Flush();

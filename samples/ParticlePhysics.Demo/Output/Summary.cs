@@ -9,9 +9,11 @@ internal static class Summary
     /// <summary>"final state at t = 10 s: y0 = 12.3, vy0 = -0.98; error against the exact solution: 1.23E-09".</summary>
     public static string Describe(ScenarioSetup setup, RunOutcome outcome)
     {
-        var head = outcome.Diverged is null
-            ? $"final state at t = {Numbers.Brief(outcome.FinalTime)} s: "
-            : $"diverged at t = {Numbers.Brief(outcome.Diverged.Time)} s; last good state at t = {Numbers.Brief(outcome.FinalTime)} s: ";
+        var head = outcome.Diverged is not null
+            ? $"diverged at t = {Numbers.Brief(outcome.Diverged.Time)} s; last good state at t = {Numbers.Brief(outcome.FinalTime)} s: "
+            : outcome.Interrupted
+                ? $"interrupted (Ctrl-C) at t = {Numbers.Brief(outcome.FinalTime)} s; state there: "
+                : $"final state at t = {Numbers.Brief(outcome.FinalTime)} s: ";
         var over = setup is ScalarOdeSetup ? string.Empty : " (max abs over positions and velocities)";
         var error = outcome.FinalError is { } e
             ? $"; error against the exact solution{over}: {Numbers.Error(e)}"

@@ -34,13 +34,30 @@ internal sealed class Axis
         double min = usable.Min(), max = usable.Max();
         if (logarithmic)
         {
-            var low = Math.Floor(Math.Log10(min));
-            var high = Math.Max(low + 1, Math.Ceiling(Math.Log10(max)));
-            var stride = Math.Max(1, (int)Math.Ceiling((high - low) / 8));
+            // Tight to the data, padded by a few per cent of its span in decades; ticks at the decades, and at 2 and 5
+            // times them when the axis spans few decades.
+            double lowLog = Math.Log10(min), highLog = Math.Log10(max);
+            var pad = Math.Max(0.05, 0.06 * (highLog - lowLog));
+            var (low, high) = (lowLog - pad, highLog + pad);
             var ticks = new List<double>();
-            for (var e = low; e <= high; e += stride)
+            var stride = Math.Max(1, (int)Math.Ceiling((high - low) / 9));
+            var mantissas = high - low < 2.5 ? new[] { 1.0, 2.0, 5.0 } : new[] { 1.0 };
+            for (var e = (int)Math.Floor(low); e <= (int)Math.Ceiling(high); e++)
             {
-                ticks.Add(Math.Pow(10, e));
+                if (e % stride != 0)
+                {
+                    continue;
+                }
+
+                foreach (var m in mantissas)
+                {
+                    var tick = m * Math.Pow(10, e);
+                    var at = Math.Log10(tick);
+                    if (at >= low - 1e-9 && at <= high + 1e-9)
+                    {
+                        ticks.Add(tick);
+                    }
+                }
             }
 
             return new Axis(low, high, true, ticks);
@@ -64,18 +81,56 @@ internal sealed class Axis
         return new Axis(start, end, false, linear);
     }
 
+    /// <summary>The value at the low end of the axis.</summary>
+    public double Low => At(0);
+
+    /// <summary>The value at the high end of the axis.</summary>
+    public double High => At(1);
+
+    /// <summary>The value at <paramref name="fraction"/> of the way from the low end (0) to the high end (1).</summary>
+    public double At(double fraction) =>
+        Logarithmic ? Math.Pow(10, _low + (fraction * (_high - _low))) : _low + (fraction * (_high - _low));
+
     /// <summary>Where <paramref name="value"/> falls, from 0 (low end) to 1 (high end).</summary>
     public double Fraction(double value) =>
         Logarithmic ? (Math.Log10(value) - _low) / (_high - _low) : (value - _low) / (_high - _low);
 
-    /// <summary>A tick's label: "1e-4" on a log axis, a short number on a linear one.</summary>
-    public string Label(double tick) =>
-        Logarithmic
-            ? FormattableString.Invariant($"1e{Math.Round(Math.Log10(tick))}")
-            : Math.Abs(tick) < 1e-12 * Math.Max(Math.Abs(_low), Math.Abs(_high)) ? "0" : tick.ToString("G4", System.Globalization.CultureInfo.InvariantCulture);
+    /// <summary>
+    /// A tick's label: on a log axis "0.002" when every tick is between 1e-4 and 1e4, else "2e-7"; a short number on a
+    /// linear one.
+    /// </summary>
+    public string Label(double tick)
+    {
+        if (!Logarithmic)
+        {
+            return Math.Abs(tick) < 1e-12 * Math.Max(Math.Abs(_low), Math.Abs(_high)) ? "0" : tick.ToString("G4", System.Globalization.CultureInfo.InvariantCulture);
+        }
+
+        if (Ticks.All(t => t >= 1e-4 && t < 1e4))
+        {
+            return tick.ToString("G4", System.Globalization.CultureInfo.InvariantCulture);
+        }
+
+        var exponent = (int)Math.Floor(Math.Log10(tick) + 1e-9);
+        var mantissa = Math.Round(tick / Math.Pow(10, exponent));
+        return exponent == 0 ? FormattableString.Invariant($"{mantissa}") : FormattableString.Invariant($"{mantissa}e{exponent}");
+    }
+
+    /// <summary>Ticks at a step of 1, 2 or 5 times a power of ten (about <paramref name="count"/> of them) between low and high.</summary>
+    public static double[] LinearTicks(double low, double high, int count)
+    {
+        var step = NiceStep(Math.Max(high - low, 1e-12) / count);
+        var ticks = new List<double>();
+        for (var k = Math.Ceiling((low / step) - 1e-9); k * step <= high + (1e-9 * step); k++)
+        {
+            ticks.Add(Math.Abs(k) < 0.5 ? 0 : k * step);
+        }
+
+        return ticks.ToArray();
+    }
 
     /// <summary>A step of 1, 2 or 5 times a power of ten, near <paramref name="rough"/>.</summary>
-    private static double NiceStep(double rough)
+    public static double NiceStep(double rough)
     {
         var power = Math.Pow(10, Math.Floor(Math.Log10(rough)));
         var mantissa = rough / power;

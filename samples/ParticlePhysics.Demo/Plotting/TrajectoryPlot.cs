@@ -1,3 +1,4 @@
+using System;
 using System.Collections.Generic;
 using System.Linq;
 using ParticlePhysics.Demo.Output;
@@ -5,7 +6,7 @@ using ParticlePhysics.Demo.Running;
 
 namespace ParticlePhysics.Demo.Plotting;
 
-/// <summary>The heights against time, each computed curve solid and its exact counterpart dashed.</summary>
+/// <summary>The heights against time: each computed curve solid with markers, its exact counterpart thin, dashed and on top.</summary>
 internal sealed class TrajectoryPlot : IRunPlot
 {
     private const int SmoothPoints = 400;
@@ -20,16 +21,13 @@ internal sealed class TrajectoryPlot : IRunPlot
         _setup = setup;
         _plan = plan;
         var columns = setup.Columns.ToList();
-        _indices = setup.PlotSeries
-            .SelectMany(s => s.Exact is null ? new[] { s.Column } : new[] { s.Column, s.Exact })
-            .Select(c => columns.IndexOf(c))
-            .ToArray();
+        _indices = setup.PlotSeries.Select(s => columns.IndexOf(s.Column)).ToArray();
         _values = _indices.Select(_ => new List<double>()).ToArray();
     }
 
     public bool Wants(int step) => _plan.IsOutputStep(step);
 
-    public void Add(double[] row)
+    public void Add(int step, double[] row)
     {
         _time.Add(row[0]);
         for (var i = 0; i < _indices.Length; i++)
@@ -38,25 +36,35 @@ internal sealed class TrajectoryPlot : IRunPlot
         }
     }
 
+    public void Finish(RunOutcome outcome)
+    {
+    }
+
     public string ToSvg(RunOutcome outcome)
     {
         var title = $"{_setup.Name}: {_plan.Integrator}, dt = {Numbers.Brief(_plan.Dt)} s"
             + (outcome.Diverged is null ? string.Empty : $" (diverged at t = {Numbers.Brief(outcome.Diverged.Time)} s)");
         var chart = new LineChart(title, "t (s)", _setup is ScalarOdeSetup ? "y" : _setup.PlotAxisLabel);
-        var k = 0;
-        var markers = _time.Count <= 40;
+
+        // The computed curves first, each with its own marker; then the exact ones on top of them, thin and dashed,
+        // so that both show where they agree.
+        var count = _time.Count;
+        var every = count <= 40 ? 1 : (int)Math.Ceiling(count / 14.0);
         for (var s = 0; s < _setup.PlotSeries.Count; s++)
         {
-            var (column, exact) = _setup.PlotSeries[s];
-            var color = LineChart.Palette[s % LineChart.Palette.Length];
-            chart.Add($"{column} ({_plan.Integrator})", _time, _values[k++], color, markers: markers);
+            var column = _setup.PlotSeries[s].Column;
+            var style = new SeriesStyle(LineChart.Palette[s % LineChart.Palette.Length], 2.6, null, LineChart.Markers[s % LineChart.Markers.Length], every, s * every / 2);
+            chart.Add($"{column} ({_plan.Integrator})", _time, _values[s], style);
+        }
+
+        var end = count == 0 ? 0 : _time[^1];
+        var times = Enumerable.Range(0, SmoothPoints + 1).Select(i => end * i / SmoothPoints).ToArray();
+        foreach (var (column, exact) in _setup.PlotSeries)
+        {
             if (exact is not null)
             {
-                // The exact curve on a fine grid of its own, so it stays smooth however few rows were printed.
-                k++;
-                var end = _time.Count == 0 ? 0 : _time[^1];
-                var times = Enumerable.Range(0, SmoothPoints + 1).Select(i => end * i / SmoothPoints).ToArray();
-                chart.Add($"{column} exact", times, times.Select(t => _setup.ExactValue(exact, t)).ToArray(), "#333333", dashed: true);
+                // On a fine grid of its own, so it stays smooth however few rows were printed.
+                chart.Add($"{column} exact", times, times.Select(t => _setup.ExactValue(exact, t)).ToArray(), new SeriesStyle("#1a1a1a", 1.2, "5 3"));
             }
         }
 

@@ -17,9 +17,6 @@ internal class ClothSetup : ParticleSetup
         ParticlesPerSide = particlesPerSide;
     }
 
-    /// <summary>A circle the snapshot plot draws behind the mesh (the drape's sphere seen from the front), or null.</summary>
-    public (double X, double Y, double Radius)? Circle { get; init; }
-
     /// <summary>n: the cloth has n x n particles, particle (row, col) at index row * n + col.</summary>
     public int ParticlesPerSide { get; }
 }

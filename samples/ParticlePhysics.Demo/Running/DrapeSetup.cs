@@ -26,7 +26,6 @@ internal sealed class DrapeSetup : ClothSetup
     {
         _scenario = scenario;
         _latest = () => latest[0];
-        Circle = (scenario.SphereCenter.X, scenario.SphereCenter.Y, scenario.SphereRadius);
     }
 
     public override IReadOnlyList<string> SummaryDetails => new[]

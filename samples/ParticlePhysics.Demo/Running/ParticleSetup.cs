@@ -105,6 +105,9 @@ internal class ParticleSetup : ScenarioSetup
 
     public override ISimulation CreateSimulation() => new ParticleSimulation(_build(), _observer?.Invoke());
 
+    /// <summary>A fresh world at t = 0, as every run starts from (the replay reads its pins and springs).</summary>
+    public ParticleWorld BuildWorld() => _build();
+
     protected override void FillExact(double time, Span<double> row)
     {
         if (Exact is null)

@@ -1,5 +1,6 @@
 using System;
-using ParticlePhysics.Demo.Plotting;
+using System.Collections.Generic;
+using System.Threading;
 using ParticlePhysics.Integrators;
 
 namespace ParticlePhysics.Demo.Running;
@@ -16,18 +17,32 @@ internal static class Runner
     /// <param name="plan">The integrator, dt, steps and output stride.</param>
     /// <param name="onRow">Receives each output row (the array is reused: copy it to keep it), or null.</param>
     /// <param name="progress">Told about each step, or null.</param>
-    /// <param name="tap">A second observer that picks its own steps (a plot's snapshots), or null.</param>
+    /// <param name="observers">Observers that pick their own steps (a plot's snapshots, an animation's frames), or null.</param>
+    /// <param name="cancellation">Stops the run between two steps (Ctrl-C): the outcome is then marked interrupted.</param>
     public static RunOutcome Run(
-        ScenarioSetup setup, RunPlan plan, Action<double[]>? onRow, ProgressReporter? progress = null, IRunPlot? tap = null)
+        ScenarioSetup setup,
+        RunPlan plan,
+        Action<double[]>? onRow,
+        ProgressReporter? progress = null,
+        IReadOnlyList<IRunObserver>? observers = null,
+        CancellationToken cancellation = default)
     {
+        observers ??= Array.Empty<IRunObserver>();
         var simulation = setup.CreateSimulation();
         var integrator = IntegratorCatalog.Create(plan.Integrator, plan.Tolerance, plan.Substeps);
         var row = new double[setup.Columns.Count];
+        var wanted = new bool[observers.Count];
         var lastRowStep = -1;
         void Emit(int step)
         {
             var output = plan.IsOutputStep(step);
-            var tapped = tap is not null && tap.Wants(step);
+            var tapped = false;
+            for (var i = 0; i < observers.Count; i++)
+            {
+                wanted[i] = observers[i].Wants(step);
+                tapped |= wanted[i];
+            }
+
             if (!output && !tapped)
             {
                 return;
@@ -40,30 +55,54 @@ internal static class Runner
                 onRow?.Invoke(row);
             }
 
-            if (tapped)
+            for (var i = 0; i < observers.Count; i++)
             {
-                tap!.Add(row);
+                if (wanted[i])
+                {
+                    observers[i].Add(step, row);
+                }
             }
+        }
+
+        RunOutcome Finish(RunOutcome outcome)
+        {
+            progress?.Clear();
+            foreach (var observer in observers)
+            {
+                observer.Finish(outcome);
+            }
+
+            return outcome;
         }
 
         Emit(0);
         for (var step = 1; step <= plan.Steps; step++)
         {
+            if (cancellation.IsCancellationRequested)
+            {
+                var done = step - 1;
+                if (lastRowStep != done)
+                {
+                    setup.FillRow(simulation, done * plan.Dt, row);
+                }
+
+                return Finish(new RunOutcome(row, done, done * plan.Dt, setup.ErrorAt(simulation, done * plan.Dt), null, Interrupted: true));
+            }
+
             try
             {
                 simulation.Step(integrator, plan.Dt);
             }
             catch (SimulationDivergedException exception)
             {
-                progress?.Clear();
                 var good = step - 1;
                 if (lastRowStep != good)
                 {
                     setup.FillRow(simulation, good * plan.Dt, row);
                 }
 
-                return new RunOutcome(
-                    row, good, good * plan.Dt, setup.ErrorAt(simulation, good * plan.Dt), new Divergence(step, step * plan.Dt, exception));
+                return Finish(new RunOutcome(
+                    row, good, good * plan.Dt, setup.ErrorAt(simulation, good * plan.Dt), new Divergence(step, step * plan.Dt, exception)));
             }
 
             Emit(step);
@@ -71,7 +110,6 @@ internal static class Runner
             progress?.Report(step, plan.Steps);
         }
 
-        progress?.Clear();
-        return new RunOutcome(row, plan.Steps, plan.EndTime, setup.ErrorAt(simulation, plan.EndTime), null);
+        return Finish(new RunOutcome(row, plan.Steps, plan.EndTime, setup.ErrorAt(simulation, plan.EndTime), null));
     }
 }

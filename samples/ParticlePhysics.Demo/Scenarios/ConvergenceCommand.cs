@@ -2,6 +2,7 @@ using System;
 using System.Collections.Generic;
 using System.CommandLine;
 using System.Linq;
+using System.Threading;
 using ParticlePhysics.Demo.Cli;
 using ParticlePhysics.Demo.Output;
 using ParticlePhysics.Demo.Plotting;
@@ -59,7 +60,7 @@ internal static class ConvergenceCommand
 
             if (parse.GetValue(plot) is { } plotPath)
             {
-                PlotFile.CheckWritable(plotPath);
+                OutputFile.CheckWritable("--plot", plotPath);
             }
 
             var names = parse.GetValue(integrator) is { } one
@@ -72,11 +73,17 @@ internal static class ConvergenceCommand
             }
 
             var substepCount = substeps is null ? Xpbd.DefaultSubsteps : parse.GetValue(substeps) ?? Xpbd.DefaultSubsteps;
-            var study = Run(setup, names, parse.GetValue(dt), parse.GetValue(duration), count, parse.GetValue(tolerance), substepCount);
+            var study = Run(setup, names, parse.GetValue(dt), parse.GetValue(duration), count, parse.GetValue(tolerance), substepCount, context.Cancellation);
             ConvergenceOutput.Write(parse.GetValue(format)!, context.Output, study);
             if (parse.GetValue(plot) is { } path)
             {
-                PlotFile.Write(path, ConvergencePlot.ToSvg(study));
+                OutputFile.Write("--plot", path, ConvergencePlot.ToSvg(study));
+            }
+
+            if (study.Interrupted)
+            {
+                context.Error.WriteLine("interrupted by Ctrl-C; the rows printed were computed in full, the rest were not run.");
+                return ExitCodes.Interrupted;
             }
 
             if (study.Rows.FirstOrDefault(r => r.Diverged is not null) is { } failed)
@@ -92,7 +99,14 @@ internal static class ConvergenceCommand
 
     /// <summary>Runs every integrator at every level; the end time is the same for all (steps double as dt halves).</summary>
     public static ConvergenceStudy Run(
-        ScenarioSetup setup, IReadOnlyList<string> integrators, double dt, double duration, int levels, double tolerance, int substeps = Xpbd.DefaultSubsteps)
+        ScenarioSetup setup,
+        IReadOnlyList<string> integrators,
+        double dt,
+        double duration,
+        int levels,
+        double tolerance,
+        int substeps = Xpbd.DefaultSubsteps,
+        CancellationToken cancellation = default)
     {
         var steps = RunPlan.StepsFor(duration, dt);
         if ((long)steps << (levels - 1) > int.MaxValue)
@@ -107,7 +121,11 @@ internal static class ConvergenceCommand
             for (var level = 0; level < levels; level++)
             {
                 var plan = new RunPlan(name, dt / (1 << level), steps << level, steps << level, tolerance, substeps);
-                var outcome = Runner.Run(setup, plan, null);
+                var outcome = Runner.Run(setup, plan, null, cancellation: cancellation);
+                if (outcome.Interrupted)
+                {
+                    return new ConvergenceStudy(setup, steps * dt, levels, rows, Interrupted: true);
+                }
                 var error = outcome.Diverged is null ? outcome.FinalError ?? double.NaN : double.NaN;
                 double? order = previous is > 0 && error > 0 ? Math.Log2(previous.Value / error) : null;
                 rows.Add(new ConvergenceRow(name, plan, error, order, IntegratorCatalog.Create(name).Order, outcome.Diverged));
@@ -123,4 +141,4 @@ internal static class ConvergenceCommand
 internal sealed record ConvergenceRow(string Integrator, RunPlan Plan, double Error, double? Order, int ExpectedOrder, Divergence? Diverged);
 
 /// <summary>A convergence study: the scenario, the common end time, and one row per integrator and dt.</summary>
-internal sealed record ConvergenceStudy(ScenarioSetup Setup, double EndTime, int Levels, IReadOnlyList<ConvergenceRow> Rows);
+internal sealed record ConvergenceStudy(ScenarioSetup Setup, double EndTime, int Levels, IReadOnlyList<ConvergenceRow> Rows, bool Interrupted = false);

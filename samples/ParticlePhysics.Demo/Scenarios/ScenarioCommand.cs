@@ -1,4 +1,7 @@
+using System.Collections.Generic;
 using System.CommandLine;
+using System.Linq;
+using ParticlePhysics.Demo.Animation;
 using ParticlePhysics.Demo.Cli;
 using ParticlePhysics.Demo.Output;
 using ParticlePhysics.Demo.Plotting;
@@ -8,7 +11,8 @@ namespace ParticlePhysics.Demo.Scenarios;
 
 /// <summary>
 /// The command that runs one scenario (<c>free-fall</c>, <c>cloth</c>, ...): its physical options and the common
-/// ones; the action streams rows to the chosen writer, draws the plot, and reports a divergence (exit code 3).
+/// ones; the action streams rows to the chosen writer (flushed row by row when stdout is a terminal), draws the
+/// plot, writes the replay page, and reports a divergence (exit code 3) or an interruption by Ctrl-C (130).
 /// </summary>
 internal static class ScenarioCommand
 {
@@ -45,23 +49,78 @@ internal static class ScenarioCommand
         var plotPath = parse.GetValue(options.Plot);
         if (plotPath is not null)
         {
-            PlotFile.CheckWritable(plotPath);
+            OutputFile.CheckWritable("--plot", plotPath);
+        }
+
+        var animatePath = parse.GetValue(options.Animate);
+        var particles = setup as ParticleSetup;
+        if (animatePath is not null)
+        {
+            if (particles is null)
+            {
+                throw new UsageException($"--animate replays particles, and {scenario.Name} is a plain ODE with none; use --plot FILE.svg for its curve.");
+            }
+
+            OutputFile.CheckWritable("--animate", animatePath);
         }
 
         var plot = plotPath is null ? null : RunPlots.For(setup, plan);
-        var writer = OutputFormat.CreateRunWriter(parse.GetValue(options.Format)!, context.Output);
+        var recorder = animatePath is null ? null : new ReplayRecorder(particles!, plan);
+        var observers = new List<IRunObserver>();
+        if (plot is not null)
+        {
+            observers.Add(plot);
+        }
 
+        if (recorder is not null)
+        {
+            observers.Add(recorder);
+        }
+
+        var writer = OutputFormat.CreateRunWriter(parse.GetValue(options.Format)!, context.Output);
+        var progress = context.Progress(scenario.Name);
         writer.Begin(setup, plan);
-        var outcome = Runner.Run(
-            setup,
-            plan,
-            writer.WriteRow,
-            context.Progress(scenario.Name),
-            plot);
+        void WriteRow(double[] row)
+        {
+            if (!context.OutputIsTerminal)
+            {
+                writer.WriteRow(row);
+                return;
+            }
+
+            // On a terminal each row shows as it is computed, above the progress line (which shares the screen).
+            if (progress is null)
+            {
+                writer.WriteRow(row);
+                context.Output.Flush();
+                return;
+            }
+
+            progress.WriteAbove(() =>
+            {
+                writer.WriteRow(row);
+                context.Output.Flush();
+            });
+        }
+
+        var outcome = Runner.Run(setup, plan, WriteRow, progress, observers, context.Cancellation);
         writer.End(outcome);
         if (plot is not null)
         {
-            PlotFile.Write(plotPath!, plot.ToSvg(outcome));
+            OutputFile.Write("--plot", plotPath!, plot.ToSvg(outcome));
+        }
+
+        if (recorder is not null)
+        {
+            var cloth = setup as ClothSetup;
+            var scene = SceneReader.Read(particles!.BuildWorld(), cloth?.ParticlesPerSide ?? 0);
+            OutputFile.Write("--animate", animatePath!, stream => ReplayPage.Write(
+                stream,
+                scene,
+                recorder,
+                $"{setup.Name}: {plan.Integrator}, dt = {Numbers.Brief(plan.Dt)} s, {plan.Steps} steps to t = {Numbers.Brief(plan.EndTime)} s",
+                Parameters(setup),
+                Summary.Describe(setup, outcome)));
         }
 
         if (outcome.Diverged is { } divergence)
@@ -70,6 +129,17 @@ internal static class ScenarioCommand
             return ExitCodes.Diverged;
         }
 
+        if (outcome.Interrupted)
+        {
+            context.Error.WriteLine($"interrupted by Ctrl-C at t = {Numbers.Brief(outcome.FinalTime)} s (step {outcome.FinalStep} of {plan.Steps}); the rows printed so far were kept.");
+            return ExitCodes.Interrupted;
+        }
+
         return ExitCodes.Success;
     }
+
+    private static string Parameters(ScenarioSetup setup) =>
+        setup.Parameters.Count == 0
+            ? "no parameters"
+            : string.Join(", ", setup.Parameters.Select(p => $"{p.Key} = {(p.Value is double d ? Numbers.Brief(d) : p.Value)}"));
 }

@@ -20,8 +20,14 @@ internal static class SummaryRun
     {
         var clock = Stopwatch.StartNew();
         var table = new TextTable("scenario", "integrator", ">dt (s)", ">t (s)", "final state", ">error");
+        var interrupted = false;
         foreach (var scenario in scenarios)
         {
+            if (interrupted)
+            {
+                break;
+            }
+
             var setup = scenario.Configure(null);
             var duration = scenario is ClothDefinition or DrapeDefinition ? ClothSeconds : scenario.DefaultDuration;
             var steps = RunPlan.StepsFor(duration, scenario.DefaultTimeStep);
@@ -31,13 +37,19 @@ internal static class SummaryRun
                 RunOutcome outcome;
                 try
                 {
-                    outcome = Runner.Run(setup, plan, null, context.Progress($"{scenario.Name} {integrator}"));
+                    outcome = Runner.Run(setup, plan, null, context.Progress($"{scenario.Name} {integrator}"), cancellation: context.Cancellation);
                 }
                 catch (System.ArgumentException exception)
                 {
                     // An integrator the catalog lists but that cannot take this system: say so in its row, run the rest.
                     table.Add(scenario.Name, integrator, Numbers.Brief(plan.Dt), string.Empty, "does not apply: " + exception.Message.Split('\n')[0], "n/a");
                     continue;
+                }
+
+                if (outcome.Interrupted)
+                {
+                    interrupted = true;
+                    break;
                 }
 
                 var error = outcome.Diverged is { } d
@@ -52,6 +64,13 @@ internal static class SummaryRun
         context.Output.WriteLine();
         table.Write(context.Output);
         context.Output.WriteLine();
+        if (interrupted)
+        {
+            context.Output.Flush();
+            context.Error.WriteLine("interrupted by Ctrl-C; the table holds the runs that had finished.");
+            return ExitCodes.Interrupted;
+        }
+
         context.Output.WriteLine(string.Create(
             System.Globalization.CultureInfo.InvariantCulture,
             $"Done in {clock.Elapsed.TotalSeconds:0.0} s. Run one scenario with: dotnet run --project samples/ParticlePhysics.Demo -- SCENARIO [options]; see --help."));

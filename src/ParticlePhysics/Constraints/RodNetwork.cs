@@ -169,6 +169,19 @@ public sealed class RodNetwork : IConstraintSet, IConstraintForces
         return (_first[link], _second[link]);
     }
 
+    /// <summary>The fixed anchor point of a link to an anchor (one whose second end <see cref="GetEnds"/> gives as -1).</summary>
+    /// <exception cref="ArgumentException">The link joins two particles.</exception>
+    public Vector3d GetAnchor(int link)
+    {
+        CheckLink(link);
+        if (_second[link] != Anchored)
+        {
+            throw new ArgumentException($"link {link} joins particles {_first[link]} and {_second[link]}, not a particle and an anchor.", nameof(link));
+        }
+
+        return new Vector3d(_anchor[3 * link], _anchor[(3 * link) + 1], _anchor[(3 * link) + 2]);
+    }
+
     /// <summary>True when the link is a cable, false for a rod.</summary>
     public bool IsCable(int link)
     {

@@ -140,6 +140,15 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         return (_pairs.First[spring], _pairs.Second[spring]);
     }
 
+    /// <summary>The particle and the fixed anchor point of an anchored spring (what a renderer draws).</summary>
+    /// <param name="spring">The index of the spring among the anchored springs, 0 to <see cref="AnchoredCount"/> - 1.</param>
+    public (int Particle, Vector3d Anchor) GetAnchoredSpring(int spring)
+    {
+        _anchored.CheckIndex(spring, nameof(spring));
+        var p = _anchored.Parameters;
+        return (_anchored.First[spring], new Vector3d(p[AnchoredStride * spring], p[(AnchoredStride * spring) + 1], p[(AnchoredStride * spring) + 2]));
+    }
+
     /// <summary>The rest length L of a particle-particle spring, in metres.</summary>
     public double GetRestLength(int spring)
     {

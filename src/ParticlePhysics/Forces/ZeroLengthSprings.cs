@@ -101,6 +101,23 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
         return _anchored.Add(particle, -1, p);
     }
 
+    /// <summary>The two particles joined by a particle-particle spring.</summary>
+    /// <param name="spring">The index of the spring among the particle-particle springs, 0 to <see cref="Count"/> - 1.</param>
+    public (int First, int Second) GetEnds(int spring)
+    {
+        _pairs.CheckIndex(spring, nameof(spring));
+        return (_pairs.First[spring], _pairs.Second[spring]);
+    }
+
+    /// <summary>The particle and the anchor point of an anchored spring (what a renderer draws).</summary>
+    /// <param name="spring">The index of the spring among the anchored springs, 0 to <see cref="AnchoredCount"/> - 1.</param>
+    public (int Particle, Vector3d Anchor) GetAnchoredSpring(int spring)
+    {
+        _anchored.CheckIndex(spring, nameof(spring));
+        var p = _anchored.Parameters;
+        return (_anchored.First[spring], new Vector3d(p[4 * spring], p[(4 * spring) + 1], p[(4 * spring) + 2]));
+    }
+
     /// <summary>Changes the stiffness of a particle-particle spring.</summary>
     public void SetStiffness(int spring, double stiffness)
     {

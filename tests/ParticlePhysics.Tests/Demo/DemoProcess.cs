@@ -17,6 +17,17 @@ internal static class DemoProcess
         return new DemoResult(exitCode, output.ToString(), error.ToString());
     }
 
+    /// <summary>Runs the demo as if Ctrl-C had been pressed as it started: every run stops before its first step.</summary>
+    public static DemoResult RunInterrupted(params string[] args)
+    {
+        using var output = new StringWriter(CultureInfo.InvariantCulture);
+        using var error = new StringWriter(CultureInfo.InvariantCulture);
+        using var interrupt = new System.Threading.CancellationTokenSource();
+        interrupt.Cancel();
+        var exitCode = Program.Run(args, output, error, cancellation: interrupt.Token);
+        return new DemoResult(exitCode, output.ToString(), error.ToString());
+    }
+
     /// <summary>Runs the demo with <see cref="CultureInfo.CurrentCulture"/> set to <paramref name="culture"/>, then restores it.</summary>
     public static DemoResult RunUnder(CultureInfo culture, params string[] args)
     {

@@ -44,6 +44,7 @@ public class DivergenceTests
         Assert.InRange(diverged.Particle, 0, system.Count - 1);
         Assert.Contains($"particle {diverged.Particle}", diverged.Message, StringComparison.Ordinal);
         Assert.Contains("t=", diverged.Message, StringComparison.Ordinal);
+        Assert.EndsWith("retry with a smaller time step, or with ImplicitEuler (implicit-euler), which stays stable at large steps.", diverged.Message, StringComparison.Ordinal);
     }
 
     [Fact]
