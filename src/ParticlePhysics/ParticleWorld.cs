@@ -47,6 +47,12 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     private double[] _next = Array.Empty<double>();
     private int _capacity;
     private int _count;
+
+    // Bumped whenever particles or generators are added or removed: products and blocks need a Linearize of the
+    // world as it is (its buffers' sizes and its generators' linearisations follow the particles and the generators).
+    private int _structureVersion;
+    private int _linearizedVersion = -1;
+    private bool _stepping;
     private double _time;
     private double _divergenceLimit = DefaultDivergenceLimit;
 
@@ -105,6 +111,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         get => _time;
         set
         {
+            ThrowIfStepping();
             Guard.Finite(value, nameof(Time));
             _time = value;
         }
@@ -168,6 +175,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <returns>The new particle's index (particles are numbered in creation order from 0).</returns>
     public int AddParticle(Vector3d position, Vector3d velocity, double mass)
     {
+        ThrowIfStepping();
         Guard.Finite(position, nameof(position));
         Guard.Finite(velocity, nameof(velocity));
         Guard.Mass(mass, nameof(mass));
@@ -182,6 +190,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         }
 
         var index = _count++;
+        _structureVersion++;
         WritePosition(index, position);
         WriteVelocity(index, velocity);
         _masses[index] = mass;
@@ -201,6 +210,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <summary>Moves a particle (pinned particles too: this is how a host drags an attachment point).</summary>
     public void SetPosition(int index, Vector3d position)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Finite(position, nameof(position));
         WritePosition(index, position);
@@ -220,6 +230,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// </summary>
     public void SetVelocity(int index, Vector3d velocity)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Finite(velocity, nameof(velocity));
         WriteVelocity(index, velocity);
@@ -258,6 +269,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <summary>Changes the mass of a particle (a positive finite number of kilograms).</summary>
     public void SetMass(int index, double mass)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Mass(mass, nameof(mass));
         _masses[index] = mass;
@@ -303,6 +315,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// </summary>
     public void Pin(int index, Vector3d velocity)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Finite(velocity, nameof(velocity));
         _pinned[index] = true;
@@ -316,6 +329,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// </summary>
     public void Unpin(int index)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         _pinned[index] = false;
         _inverseMasses[index] = 1.0 / _masses[index];
@@ -327,6 +341,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// </summary>
     public void SetState(ReadOnlySpan<double> state)
     {
+        ThrowIfStepping();
         if (state.Length != Dimension)
         {
             throw new ArgumentException(
@@ -350,6 +365,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <exception cref="ArgumentException">The generator is already in this system, or names the particles of another one.</exception>
     public void AddForce(IForceGenerator generator)
     {
+        ThrowIfStepping();
         Guard.NotNull(generator, nameof(generator));
         if (_forceGenerators.Contains(generator))
         {
@@ -365,11 +381,13 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
 
         _forceGenerators.Add(generator);
         _unprojectedStale = true;
+        _structureVersion++;
     }
 
     /// <summary>Removes a force generator; returns false when it was not in the system.</summary>
     public bool RemoveForce(IForceGenerator generator)
     {
+        ThrowIfStepping();
         if (!_forceGenerators.Remove(generator))
         {
             return false;
@@ -378,6 +396,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         _ = _finiteDifference.Remove(generator);
         _linearized.Clear(); // a later product must not reach a removed generator; the next Linearize rebuilds it
         _unprojectedStale = true;
+        _structureVersion++;
         return true;
     }
 
@@ -385,6 +404,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <exception cref="ArgumentException">The set is already in this world.</exception>
     public void AddConstraints(IConstraintSet constraints)
     {
+        ThrowIfStepping();
         Guard.NotNull(constraints, nameof(constraints));
         if (_constraintSets.Contains(constraints))
         {
@@ -403,6 +423,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <summary>Removes a constraint set; returns false when it was not in the world.</summary>
     public bool RemoveConstraints(IConstraintSet constraints)
     {
+        ThrowIfStepping();
         if (!_constraintSets.Remove(constraints))
         {
             return false;
@@ -442,10 +463,18 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         }
 
         var current = _state.AsSpan(0, dimension);
-        integrator.Step(this, _time, current, _next, dt);
-        if (integrator is not IPositionBasedIntegrator)
+        _stepping = true;
+        try
         {
-            ResolveConstraints(current, dt);
+            integrator.Step(this, _time, current, _next, dt);
+            if (integrator is not IPositionBasedIntegrator)
+            {
+                ResolveConstraints(current, dt);
+            }
+        }
+        finally
+        {
+            _stepping = false;
         }
 
         var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
@@ -505,12 +534,20 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         }
 
         _ = AccumulateForces(time, positions, velocities);
+        var count = n / 3;
+        if (_forces.Length < n || _inverseMasses.Length < count)
+        {
+            // A generator that added particles while it was evaluated (a step forbids it; a bare Evaluate cannot).
+            throw new InvalidOperationException("The world changed while its forces were being evaluated.");
+        }
+
         unsafe
         {
-            // The accumulator itself, an array (pinning the read-only span AccumulateForces returns would not bind on Mono).
+            // The accumulator itself, an array (pinning the read-only span AccumulateForces returns would not bind on
+            // Mono). The loop runs over the n values checked above, whatever a generator did to the world meanwhile.
             fixed (double* f = _forces, w = _inverseMasses, a = accelerations)
             {
-                for (var i = 0; i < _count; i++)
+                for (var i = 0; i < count; i++)
                 {
                     var o = 3 * i;
                     a[o] = f[o] * w[i];
@@ -669,6 +706,15 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         UserForceTreatment userForces,
         Span<double> positionJacobianTimesVelocity)
     {
+        var n = 3 * _count;
+        if (positions.Length != n || velocities.Length != n || positionJacobianTimesVelocity.Length != n)
+        {
+            throw new ArgumentException(
+                $"positions, velocities and positionJacobianTimesVelocity must have {n} values each; got "
+                + $"{positions.Length}, {velocities.Length} and {positionJacobianTimesVelocity.Length}.");
+        }
+
+        _linearizedVersion = -1;
         _linearized.Clear();
         for (var g = 0; g < _forceGenerators.Count; g++)
         {
@@ -694,11 +740,17 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         {
             _linearized[j].Linearize(view, positionScale, velocityScale, positionJacobianTimesVelocity);
         }
+
+        _linearizedVersion = _structureVersion;
     }
 
     /// <inheritdoc />
+    /// <exception cref="InvalidOperationException">
+    /// No Linearize yet, or particles or generators were added or removed since the last one.
+    /// </exception>
     void ILinearizableSystem.AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
     {
+        CheckLinearized(w.Length, result.Length, 3);
         for (var j = 0; j < _linearized.Count; j++)
         {
             _linearized[j].AddJacobianProduct(w, result);
@@ -706,8 +758,12 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     }
 
     /// <inheritdoc />
+    /// <exception cref="InvalidOperationException">
+    /// No Linearize yet, or particles or generators were added or removed since the last one.
+    /// </exception>
     void ILinearizableSystem.AddDiagonalBlocks(Span<double> blocks)
     {
+        CheckLinearized(blocks.Length, blocks.Length, 9);
         for (var j = 0; j < _linearized.Count; j++)
         {
             _linearized[j].AddDiagonalBlocks(blocks);
@@ -828,6 +884,32 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         for (var i = 0; i < _count; i++)
         {
             destination[i] = new Vector3((float)x[3 * i], (float)x[(3 * i) + 1], (float)x[(3 * i) + 2]);
+        }
+    }
+
+    private void CheckLinearized(int input, int output, int perParticle)
+    {
+        if (_linearizedVersion != _structureVersion)
+        {
+            throw new InvalidOperationException(_linearizedVersion < 0
+                ? "Jacobian products and blocks need a Linearize of the world first."
+                : "Particles or force generators were added or removed since the last Linearize: linearise again.");
+        }
+
+        var needed = perParticle * _count;
+        if (input != needed || output != needed)
+        {
+            throw new ArgumentException($"The buffers must hold {needed} values ({perParticle} per particle); got {input} and {output}.");
+        }
+    }
+
+    private void ThrowIfStepping()
+    {
+        if (_stepping)
+        {
+            throw new InvalidOperationException(
+                "The world cannot be changed during its own step (by a force generator or a constraint set): "
+                + "a step either commits whole or leaves the world as it was.");
         }
     }
 
