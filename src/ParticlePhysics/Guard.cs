@@ -47,8 +47,24 @@ internal static class Guard
         }
     }
 
-    public static void Mass(double mass, string name) =>
+    /// <summary>
+    /// A mass: positive, finite, and large enough that its inverse 1 / m is finite too (m &gt;= 1 / double.MaxValue,
+    /// about 5.6e-309), since every integrator divides by it.
+    /// </summary>
+    public static void Mass(double mass, string name)
+    {
         PositiveFinite(mass, name, "Pin the particle to make it immovable.");
+        if (!DoubleChecks.IsFinite(1.0 / mass))
+        {
+            throw new ArgumentOutOfRangeException(
+                name,
+                mass,
+                $"{name} must be at least {Format(SmallestMass)} kg, so that its inverse is finite; got {Format(mass)}.");
+        }
+    }
+
+    /// <summary>The smallest mass whose inverse is finite: the double just above 1 / double.MaxValue (whose own inverse overflows).</summary>
+    public const double SmallestMass = 5.56268464626801e-309;
 
     public static void ParticleIndex(int index, int count, string name)
     {
