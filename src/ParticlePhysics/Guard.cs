@@ -47,6 +47,18 @@ internal static class Guard
         }
     }
 
+    /// <summary>A step of <paramref name="dt"/> from <paramref name="time"/> must end at a finite time (a state at t = inf cannot be saved or read back).</summary>
+    public static void FiniteEndTime(double time, double dt)
+    {
+        if (!DoubleChecks.IsFinite(time + dt))
+        {
+            throw new ArgumentOutOfRangeException(
+                "dt",
+                dt,
+                $"dt = {Format(dt)} from t = {Format(time)} would end the step at t = {Format(time + dt)}; the end time must be finite.");
+        }
+    }
+
     /// <summary>
     /// A mass: positive, finite, and large enough that its inverse 1 / m is finite too (m &gt;= 1 / double.MaxValue,
     /// about 5.6e-309), since every integrator divides by it.

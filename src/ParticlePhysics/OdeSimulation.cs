@@ -63,6 +63,9 @@ public sealed class OdeSimulation
     }
 
     /// <summary>Advances by one step of <paramref name="dt"/> with <paramref name="integrator"/>.</summary>
+    /// <exception cref="ArgumentOutOfRangeException">
+    /// <paramref name="dt"/> is not a positive finite number, or <see cref="Time"/> + <paramref name="dt"/> is not finite.
+    /// </exception>
     /// <exception cref="SimulationDivergedException">
     /// The step's result is not finite (or beyond <see cref="DivergenceLimit"/>); the state is left as it was.
     /// </exception>
@@ -70,6 +73,7 @@ public sealed class OdeSimulation
     {
         Guard.NotNull(integrator, nameof(integrator));
         Guard.PositiveFinite(dt, nameof(dt));
+        Guard.FiniteEndTime(Time, dt);
         integrator.Step(System, Time, _state, _next, dt);
         var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
         if (bad >= 0)

@@ -446,7 +446,9 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// only if it is finite and within <see cref="DivergenceLimit"/>. If any stage throws, the world is left exactly as
     /// it was.
     /// </summary>
-    /// <exception cref="ArgumentOutOfRangeException"><paramref name="dt"/> is not a positive finite number.</exception>
+    /// <exception cref="ArgumentOutOfRangeException">
+    /// <paramref name="dt"/> is not a positive finite number, or <see cref="Time"/> + <paramref name="dt"/> is not finite.
+    /// </exception>
     /// <exception cref="SimulationDivergedException">
     /// The step produced a value that is not finite or beyond <see cref="DivergenceLimit"/>; the system stays at its
     /// last good state and time.
@@ -455,6 +457,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     {
         Guard.NotNull(integrator, nameof(integrator));
         Guard.PositiveFinite(dt, nameof(dt));
+        Guard.FiniteEndTime(_time, dt);
         Compact();
         var dimension = 6 * _count;
         if (_next.Length != dimension)

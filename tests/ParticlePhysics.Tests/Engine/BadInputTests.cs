@@ -117,6 +117,38 @@ public class BadInputTests
     }
 
     [Fact]
+    public void A_step_that_would_end_at_an_infinite_time_is_refused()
+    {
+        // Issue 10, item 9: from double.MaxValue, dt = 1e300 made Time +infinity, and that state's snapshot could be
+        // written but not read back.
+        foreach (var name in IntegratorCatalog.Names)
+        {
+            var system = TwoParticles(out _);
+            system.Time = double.MaxValue;
+            AssertRejected(system, "dt", 1e300, () => system.Step(IntegratorCatalog.Create(name), 1e300));
+            Assert.Equal(double.MaxValue, system.Time);
+        }
+
+        var simulation = new OdeSimulation(new Scenarios.GaussianDecayOde(), new[] { 1.0 }, initialTime: double.MaxValue);
+        var ex = Assert.Throws<ArgumentOutOfRangeException>("dt", () => simulation.Step(new ExplicitEuler(), 1e300));
+        Assert.Contains("end time must be finite", ex.Message, StringComparison.Ordinal);
+        Assert.Equal(double.MaxValue, simulation.Time);
+    }
+
+    [Theory]
+    [InlineData(-1)]
+    [InlineData(ParticleWorld.MaxParticles + 1)]
+    [InlineData(357_913_942)] // the smallest capacity whose 6 values per particle overflow an int
+    [InlineData(int.MaxValue)]
+    public void A_capacity_outside_0_to_the_world_limit_is_refused_with_its_value(int capacity)
+    {
+        // Issue 10, item 10: capacities from 357,913,942 up threw OverflowException.
+        var ex = Assert.Throws<ArgumentOutOfRangeException>("capacity", () => new ParticleWorld(capacity));
+        Assert.Contains(capacity.ToString(System.Globalization.CultureInfo.InvariantCulture), ex.Message, StringComparison.Ordinal);
+        Assert.Contains("4194304", ex.Message, StringComparison.Ordinal);
+    }
+
+    [Fact]
     public void A_force_generator_built_for_another_system_or_added_twice_is_refused()
     {
         var system = TwoParticles(out var springs);
