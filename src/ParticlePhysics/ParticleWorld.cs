@@ -906,7 +906,8 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         }
     }
 
-    private void ThrowIfStepping()
+    /// <summary>Throws when called from inside this world's own step (by a force generator or a constraint set).</summary>
+    internal void ThrowIfStepping()
     {
         if (_stepping)
         {
