@@ -74,14 +74,32 @@ public sealed class OdeSimulation
         Guard.NotNull(integrator, nameof(integrator));
         Guard.PositiveFinite(dt, nameof(dt));
         Guard.FiniteEndTime(Time, dt);
-        integrator.Step(System, Time, _state, _next, dt);
-        var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
-        if (bad >= 0)
+        var stateful = integrator as IStatefulIntegrator;
+        var committed = false;
+        try
         {
-            throw new SimulationDivergedException(Time + dt, Time, bad, -1, _next[bad], _divergenceLimit);
-        }
+            integrator.Step(System, Time, _state, _next, dt);
+            var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
+            if (bad >= 0)
+            {
+                throw new SimulationDivergedException(Time + dt, Time, bad, -1, _next[bad], _divergenceLimit);
+            }
 
-        _next.AsSpan().CopyTo(_state);
-        Time += dt;
+            _next.AsSpan().CopyTo(_state);
+            Time += dt;
+            committed = true;
+        }
+        finally
+        {
+            // As in ParticleWorld.Step: a stateful integrator keeps the state of a committed step only.
+            if (committed)
+            {
+                stateful?.CommitStep();
+            }
+            else
+            {
+                stateful?.DiscardStep();
+            }
+        }
     }
 }

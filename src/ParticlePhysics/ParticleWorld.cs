@@ -444,7 +444,9 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// (<see cref="IConstraintSet.Resolve"/>, every set in order), except after a position-based integrator
     /// (<see cref="IPositionBasedIntegrator"/>), which has projected every set in its substeps; the result is committed
     /// only if it is finite and within <see cref="DivergenceLimit"/>. If any stage throws, the world is left exactly as
-    /// it was.
+    /// it was, and so is an integrator that carries state (<see cref="IStatefulIntegrator"/>): it is told to commit the
+    /// state of a committed step and to discard that of a failed one, so a retry takes the same step as one from a
+    /// restored snapshot.
     /// </summary>
     /// <exception cref="ArgumentOutOfRangeException">
     /// <paramref name="dt"/> is not a positive finite number, or <see cref="Time"/> + <paramref name="dt"/> is not finite.
@@ -466,6 +468,8 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         }
 
         var current = _state.AsSpan(0, dimension);
+        var stateful = integrator as IStatefulIntegrator;
+        var committed = false;
         _stepping = true;
         try
         {
@@ -474,22 +478,34 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
             {
                 ResolveConstraints(current, dt);
             }
+
+            _stepping = false;
+            var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
+            if (bad >= 0)
+            {
+                throw new SimulationDivergedException(
+                    _time + dt, _time, bad, (bad % (3 * _count)) / 3, _next[bad], _divergenceLimit);
+            }
+
+            // Commit by swapping the buffers (the spans handed out before the step are documented as stale after it).
+            (_state, _next) = (_next, _state);
+            _time += dt;
+            committed = true;
         }
         finally
         {
             _stepping = false;
-        }
 
-        var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
-        if (bad >= 0)
-        {
-            throw new SimulationDivergedException(
-                _time + dt, _time, bad, (bad % (3 * _count)) / 3, _next[bad], _divergenceLimit);
+            // The integrator's own state follows the world's: kept with a committed step, forgotten with a failed one.
+            if (committed)
+            {
+                stateful?.CommitStep();
+            }
+            else
+            {
+                stateful?.DiscardStep();
+            }
         }
-
-        // Commit by swapping the buffers (the spans handed out before the step are documented as stale after it).
-        (_state, _next) = (_next, _state);
-        _time += dt;
     }
 
     /// <summary>The constraint stage after a force-based step: every set corrects the end state in the scratch buffer.</summary>
