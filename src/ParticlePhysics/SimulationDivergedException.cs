@@ -23,6 +23,7 @@ public sealed class SimulationDivergedException : Exception
         double time, double lastFiniteTime, int component, int particle, double value, double limit)
         : base(BuildMessage(time, lastFiniteTime, component, particle, value, limit))
     {
+        _cause = Cause(component, particle, value, limit);
         Time = time;
         LastFiniteTime = lastFiniteTime;
         Component = component;
@@ -46,6 +47,7 @@ public sealed class SimulationDivergedException : Exception
         double time, double lastFiniteTime, int component, int particle, double value, double limit, string cause)
         : base(BuildMessage(time, lastFiniteTime, cause))
     {
+        _cause = cause;
         Time = time;
         LastFiniteTime = lastFiniteTime;
         Component = component;
@@ -53,6 +55,8 @@ public sealed class SimulationDivergedException : Exception
         Value = value;
         Limit = limit;
     }
+
+    private readonly string _cause;
 
     /// <summary>The time the failed step was to reach, in seconds.</summary>
     public double Time { get; }
@@ -72,8 +76,15 @@ public sealed class SimulationDivergedException : Exception
     /// <summary>The divergence limit in force (<see cref="ParticleWorld.DivergenceLimit"/>).</summary>
     public double Limit { get; }
 
+    /// <summary>The same failure, reported by a caller that rolled the system back further, to <paramref name="lastFiniteTime"/>.</summary>
+    internal SimulationDivergedException RewoundTo(double lastFiniteTime) =>
+        new(Time, lastFiniteTime, Component, Particle, Value, Limit, _cause);
+
     private static string BuildMessage(
-        double time, double lastFiniteTime, int component, int particle, double value, double limit)
+        double time, double lastFiniteTime, int component, int particle, double value, double limit) =>
+        BuildMessage(time, lastFiniteTime, Cause(component, particle, value, limit));
+
+    private static string Cause(int component, int particle, double value, double limit)
     {
         var what = particle >= 0
             ? string.Format(CultureInfo.InvariantCulture, "particle {0}", particle)
@@ -81,7 +92,7 @@ public sealed class SimulationDivergedException : Exception
         var how = DoubleChecks.IsFinite(value)
             ? string.Format(CultureInfo.InvariantCulture, "reached {0:R}, beyond the divergence limit {1:R}", value, limit)
             : string.Format(CultureInfo.InvariantCulture, "is no longer finite ({0})", value);
-        return BuildMessage(time, lastFiniteTime, what + " " + how);
+        return what + " " + how;
     }
 
     private static string BuildMessage(double time, double lastFiniteTime, string cause) =>
