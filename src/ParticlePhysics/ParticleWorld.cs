@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using System.Globalization;
 using System.Numerics;
 using ParticlePhysics.Numerics;
 using ParticlePhysics.Parallel;
@@ -75,7 +76,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// </summary>
     public const int MaxParticles = 2048 * 2048;
 
-    /// <summary>The default <see cref="DivergenceLimit"/>: 1e12 (metres, metres per second).</summary>
+    /// <summary>The default <see cref="DivergenceLimit"/>: 1e12 m/s, some 3,000 times the speed of light.</summary>
     public const double DefaultDivergenceLimit = 1e12;
 
     /// <summary>The number of particles.</summary>
@@ -89,11 +90,16 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     public IParallelRunner? Runner { get; set; }
 
     /// <summary>
-    /// The largest magnitude a position or velocity coordinate may reach: a step that produces a larger value, NaN
-    /// or infinity throws <see cref="SimulationDivergedException"/> and is not committed. The default, 1e12 m and
-    /// m/s, is far beyond any game world or course scenario, yet catches a blow-up long before it overflows (an
-    /// unstable cloth passes 1e5 m within a quarter second but takes seconds more to reach infinity), so the state
-    /// left in place is one worth retrying from. Set <see cref="double.MaxValue"/> to stop only at non-finite values.
+    /// The largest magnitude a velocity component may reach, in m/s: a step that produces a faster particle, or any
+    /// position or velocity that is NaN or infinite, throws <see cref="SimulationDivergedException"/> and is not
+    /// committed. Positions may take any finite value, so a world of any size runs (a free fall from 1.1e12 m as one
+    /// from 300 m). The default, 1e12 m/s (3,000 times the speed of light), is beyond any game world or course
+    /// scenario, yet catches a blow-up long before it overflows, so the state left in place is one worth retrying
+    /// from: positions grow only through velocities, and an unstable cloth's speeds pass 1e12 m/s within a quarter
+    /// second, seconds before anything reaches infinity. The bound is on speeds rather than on coordinates because a
+    /// coordinate bound must know the world's size, and one taken from the world itself either follows the blow-up
+    /// (from the current state) or depends on history that a snapshot does not hold; a speed bound depends only on the
+    /// step's result. Set <see cref="double.MaxValue"/> to stop only at non-finite values.
     /// </summary>
     public double DivergenceLimit
     {
@@ -443,17 +449,17 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// the integrator advances the state under the forces into a scratch buffer; the constraint stage corrects it
     /// (<see cref="IConstraintSet.Resolve"/>, every set in order), except after a position-based integrator
     /// (<see cref="IPositionBasedIntegrator"/>), which has projected every set in its substeps; the result is committed
-    /// only if it is finite and within <see cref="DivergenceLimit"/>. If any stage throws, the world is left exactly as
-    /// it was, and so is an integrator that carries state (<see cref="IStatefulIntegrator"/>): it is told to commit the
-    /// state of a committed step and to discard that of a failed one, so a retry takes the same step as one from a
-    /// restored snapshot.
+    /// only if it is finite and its velocities are within <see cref="DivergenceLimit"/>. If any stage throws, the world
+    /// is left exactly as it was, and so is an integrator that carries state (<see cref="IStatefulIntegrator"/>): it is
+    /// told to commit the state of a committed step and to discard that of a failed one, so a retry takes the same step
+    /// as one from a restored snapshot.
     /// </summary>
     /// <exception cref="ArgumentOutOfRangeException">
     /// <paramref name="dt"/> is not a positive finite number, or <see cref="Time"/> + <paramref name="dt"/> is not finite.
     /// </exception>
     /// <exception cref="SimulationDivergedException">
-    /// The step produced a value that is not finite or beyond <see cref="DivergenceLimit"/>; the system stays at its
-    /// last good state and time.
+    /// The step produced a value that is not finite, or a velocity beyond <see cref="DivergenceLimit"/>; the system
+    /// stays at its last good state and time.
     /// </exception>
     public void Step(IIntegrator integrator, double dt)
     {
@@ -480,12 +486,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
             }
 
             _stepping = false;
-            var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
-            if (bad >= 0)
-            {
-                throw new SimulationDivergedException(
-                    _time + dt, _time, bad, (bad % (3 * _count)) / 3, _next[bad], _divergenceLimit);
-            }
+            CheckDiverged(dt);
 
             // Commit by swapping the buffers (the spans handed out before the step are documented as stale after it).
             (_state, _next) = (_next, _state);
@@ -506,6 +507,48 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
                 stateful?.DiscardStep();
             }
         }
+    }
+
+    /// <summary>
+    /// The commit's check of the end state in the scratch buffer: every position finite, every velocity component
+    /// within <see cref="DivergenceLimit"/> (one comparison per value; NaN fails it).
+    /// </summary>
+    private void CheckDiverged(double dt)
+    {
+        var n = 3 * _count;
+        var bad = DoubleChecks.FirstBeyond(_next.AsSpan(0, n), double.MaxValue);
+        var velocity = false;
+        if (bad < 0)
+        {
+            bad = DoubleChecks.FirstBeyond(_next.AsSpan(n, n), _divergenceLimit);
+            velocity = bad >= 0;
+        }
+
+        if (bad < 0)
+        {
+            return;
+        }
+
+        var value = velocity ? _next[n + bad] : _next[bad];
+        var particle = bad / 3;
+        var axis = "xyz"[bad % 3];
+        var cause = DoubleChecks.IsFinite(value)
+            ? string.Format(
+                CultureInfo.InvariantCulture,
+                "particle {0} reached v{1} = {2:R} m/s, beyond the divergence limit {3:R} m/s",
+                particle,
+                axis,
+                value,
+                _divergenceLimit)
+            : string.Format(
+                CultureInfo.InvariantCulture,
+                "particle {0}'s {1} {2} is no longer finite ({3})",
+                particle,
+                velocity ? "velocity" : "position",
+                velocity ? "v" + axis : axis.ToString(),
+                value);
+        throw new SimulationDivergedException(
+            _time + dt, _time, velocity ? n + bad : bad, particle, value, _divergenceLimit, cause);
     }
 
     /// <summary>The constraint stage after a force-based step: every set corrects the end state in the scratch buffer.</summary>

@@ -9,9 +9,13 @@ internal static class DivergenceMessage
     public static string For(Divergence divergence, RunPlan plan)
     {
         var e = divergence.Exception;
+        // A particle world bounds speeds (ParticleWorld.DivergenceLimit, m/s) and only asks positions to be finite; a
+        // plain ODE bounds every component.
         var who = e.Particle >= 0 ? $"particle {e.Particle}" : $"state component {e.Component}";
         var what = double.IsFinite(e.Value)
-            ? $"reached {Numbers.Brief(e.Value)}, beyond the divergence limit {Numbers.Brief(e.Limit)}"
+            ? e.Particle >= 0
+                ? $"reached v{"xyz"[e.Component % 3]} = {Numbers.Brief(e.Value)} m/s, beyond the divergence limit {Numbers.Brief(e.Limit)} m/s"
+                : $"reached {Numbers.Brief(e.Value)}, beyond the divergence limit {Numbers.Brief(e.Limit)}"
             : $"became {Numbers.RoundTrip(e.Value)}";
         var alternative = plan.Integrator == "implicit-euler" ? string.Empty : ", or --integrator implicit-euler";
         return $"error: simulation diverged at t={Numbers.RoundTrip(divergence.Time)} s ({plan.Integrator}, dt = {Numbers.RoundTrip(plan.Dt)} s: {who} {what}); "
