@@ -47,15 +47,28 @@ internal static class Guard
         }
     }
 
-    /// <summary>A step of <paramref name="dt"/> from <paramref name="time"/> must end at a finite time (a state at t = inf cannot be saved or read back).</summary>
+    /// <summary>
+    /// A step of <paramref name="dt"/> from <paramref name="time"/> must end at a finite time (a state at t = inf cannot
+    /// be saved or read back) that is later than its start: a dt that vanishes against t (1e-3 from t = 1e20) would be a
+    /// step that moves nothing yet reports success, and lets an integrator keep state from a step that never ran.
+    /// </summary>
     public static void FiniteEndTime(double time, double dt)
     {
-        if (!DoubleChecks.IsFinite(time + dt))
+        var end = time + dt;
+        if (!DoubleChecks.IsFinite(end))
         {
             throw new ArgumentOutOfRangeException(
                 "dt",
                 dt,
-                $"dt = {Format(dt)} from t = {Format(time)} would end the step at t = {Format(time + dt)}; the end time must be finite.");
+                $"dt = {Format(dt)} from t = {Format(time)} would end the step at t = {Format(end)}; the end time must be finite.");
+        }
+
+        if (!(end > time))
+        {
+            throw new ArgumentOutOfRangeException(
+                "dt",
+                dt,
+                $"dt = {Format(dt)} does not advance t = {Format(time)}: t + dt rounds to t. Take a larger dt, or start the time nearer 0.");
         }
     }
 

@@ -251,6 +251,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <exception cref="InvalidOperationException">The particle is not pinned (forces move a free particle).</exception>
     public void MoveKinematic(int index, Vector3d target, double duration)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Finite(target, nameof(target));
         Guard.PositiveFinite(duration, nameof(duration));
@@ -670,11 +671,14 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
 
         unsafe
         {
-            // The accumulator and the inverse masses are arrays of at least n and _count values, accelerations n.
+            // The accumulator and the inverse masses are arrays of at least n and n / 3 values, accelerations n. The
+            // bound is n / 3, not _count: a force that added a particle during a bare call (outside a step, where the
+            // world cannot refuse it) would otherwise make the loop write past the accelerations.
+            var count = n / 3;
             fixed (double* f = _forces, w = _inverseMasses, a = accelerations)
             {
                 double* fi = f, ai = a;
-                for (var i = 0; i < _count; i++, fi += 3, ai += 3)
+                for (var i = 0; i < count; i++, fi += 3, ai += 3)
                 {
                     var wi = w[i];
                     ai[0] = fi[0] * wi;

@@ -78,6 +78,12 @@ public sealed class FixedTimestepDriver
         _previous = new double[system.CoordinateCount];
         _pendingPrevious = new double[system.CoordinateCount];
         _frameState = new double[system.Dimension];
+
+        // Room for the integrator's state up front, so that no frame allocates: implicit Euler's grows to 1 + 6 values
+        // per particle over its first steps; 1024 + 6 per particle is what a snapshot admits of any integrator.
+        _frameIntegratorState = integrator is IStatefulIntegrator stateful
+            ? new double[Math.Max(stateful.StateLength, 1024 + (6 * system.Count))]
+            : Array.Empty<double>();
         system.Positions.CopyTo(_previous);
     }
 

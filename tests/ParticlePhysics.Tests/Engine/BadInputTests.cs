@@ -129,6 +129,15 @@ public class BadInputTests
             Assert.Equal(double.MaxValue, system.Time);
         }
 
+        // Found by the API fuzzer: from t = double.MaxValue a dt of 0.005 vanished (t + dt == t), so the step moved
+        // nothing, reported success, and rk45 kept a step size computed from a step that never ran.
+        foreach (var (time, dt) in new[] { (double.MaxValue, 0.005), (1e20, 1e-3), (1.0, 1e-17) })
+        {
+            var system = TwoParticles(out _);
+            system.Time = time;
+            AssertRejected(system, "dt", dt, () => system.Step(new DormandPrince45(), dt));
+        }
+
         var simulation = new OdeSimulation(new Scenarios.GaussianDecayOde(), new[] { 1.0 }, initialTime: double.MaxValue);
         var ex = Assert.Throws<ArgumentOutOfRangeException>("dt", () => simulation.Step(new ExplicitEuler(), 1e300));
         Assert.Contains("end time must be finite", ex.Message, StringComparison.Ordinal);
