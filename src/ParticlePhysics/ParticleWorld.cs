@@ -54,6 +54,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     private int _structureVersion;
     private int _linearizedVersion = -1;
     private bool _stepping;
+    private int _frameDepth; // open FixedTimestepDriver frames: their steps leave the constraint sets' bracket to them
     private double _time;
     private double _divergenceLimit = DefaultDivergenceLimit;
 
@@ -477,6 +478,12 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         var current = _state.AsSpan(0, dimension);
         var stateful = integrator as IStatefulIntegrator;
         var committed = false;
+        var bracket = _frameDepth == 0;
+        if (bracket)
+        {
+            BeginConstraintSets();
+        }
+
         _stepping = true;
         try
         {
@@ -506,6 +513,59 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
             else
             {
                 stateful?.DiscardStep();
+            }
+
+            if (bracket)
+            {
+                EndConstraintSets(committed);
+            }
+        }
+    }
+
+    /// <summary>
+    /// Opens one all-or-nothing bracket around several steps (a <see cref="Driver.FixedTimestepDriver"/> frame): the
+    /// stateful constraint sets (<see cref="IStatefulConstraintSet"/>) keep aside what they show now, and the steps
+    /// inside leave them to <see cref="EndFrame"/>.
+    /// </summary>
+    internal void BeginFrame()
+    {
+        if (_frameDepth++ == 0)
+        {
+            BeginConstraintSets();
+        }
+    }
+
+    /// <summary>Closes the bracket of <see cref="BeginFrame"/>: the sets keep the frame's result, or show again what they showed before it.</summary>
+    internal void EndFrame(bool committed)
+    {
+        if (--_frameDepth == 0)
+        {
+            EndConstraintSets(committed);
+        }
+    }
+
+    private void BeginConstraintSets()
+    {
+        for (var c = 0; c < _constraintSets.Count; c++)
+        {
+            (_constraintSets[c] as IStatefulConstraintSet)?.BeginStep();
+        }
+    }
+
+    private void EndConstraintSets(bool committed)
+    {
+        for (var c = 0; c < _constraintSets.Count; c++)
+        {
+            if (_constraintSets[c] is IStatefulConstraintSet set)
+            {
+                if (committed)
+                {
+                    set.CommitStep();
+                }
+                else
+                {
+                    set.DiscardStep();
+                }
             }
         }
     }

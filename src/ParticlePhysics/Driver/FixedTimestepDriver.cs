@@ -197,6 +197,12 @@ public sealed class FixedTimestepDriver
             }
         }
 
+        // The constraint sets' logs (impacts, tensions) follow the frame as one bracket: restored with the state.
+        if (checkpoint)
+        {
+            System.BeginFrame();
+        }
+
         try
         {
             for (var step = 0; step < steps; step++)
@@ -211,12 +217,19 @@ public sealed class FixedTimestepDriver
         catch (SimulationDivergedException diverged) when (checkpoint)
         {
             Rewind(stateful, startTime, integratorStateLength);
+            System.EndFrame(committed: false);
             throw diverged.RewoundTo(startTime);
         }
         catch when (checkpoint)
         {
             Rewind(stateful, startTime, integratorStateLength);
+            System.EndFrame(committed: false);
             throw;
+        }
+
+        if (checkpoint)
+        {
+            System.EndFrame(committed: true);
         }
 
         // The positions before the frame's last fixed step are the interpolation's start.
