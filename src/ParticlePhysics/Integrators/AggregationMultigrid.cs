@@ -343,10 +343,13 @@ internal sealed unsafe class AggregationMultigrid
         _checkFirst = new int[count]; // (here, so that the next step's check allocates nothing)
         _checkSecond = new int[count];
         system.WriteCouplings(_first, _second);
-        _couplings = count;
-        _particles = particles;
         _levels = Array.Empty<Level>();
         _filteredFor = Array.Empty<bool>();
+
+        // Marked as built only once the couplings are checked: a hierarchy that failed here is built (and fails) again
+        // at the next step, instead of that step finding the same couplings and falling back to block Jacobi silently.
+        _couplings = -1;
+        _particles = -1;
         for (var e = 0; e < count; e++)
         {
             if ((uint)_first[e] >= (uint)particles || (uint)_second[e] >= (uint)particles)
@@ -355,6 +358,9 @@ internal sealed unsafe class AggregationMultigrid
                     $"Coupling {e} joins particles {_first[e]} and {_second[e]}; the system has {particles}.");
             }
         }
+
+        _couplings = count;
+        _particles = particles;
 
         var fine = Graph.FromPairs(particles, _first, _second, count);
         if (particles <= CoarsestNodes || fine.EdgeCount == 0)

@@ -145,6 +145,24 @@ public class LinearizationBoundsTests
         return (world, network);
     }
 
+    [Fact]
+    public void A_user_force_stating_a_coupling_outside_the_world_fails_every_step_not_only_the_first()
+    {
+        // The multigrid refuses a coupling to a particle that does not exist. It used to mark its hierarchy as built
+        // before that check, so the retry found "the same couplings" and ran silently on block Jacobi: a retry that
+        // differed from the first attempt.
+        var (world, _) = Chain(100, springs: 99);
+        world.AddForce(new BadCouplings());
+        var implicitEuler = new ImplicitEuler { Preconditioner = ImplicitPreconditioner.Multigrid };
+        var before = world.State.ToArray();
+        for (var attempt = 0; attempt < 2; attempt++)
+        {
+            var e = Assert.Throws<InvalidOperationException>(() => world.Step(implicitEuler, 0.01));
+            Assert.Contains("joins particles 0 and 100", e.Message, StringComparison.Ordinal);
+            Assert.Equal(before, world.State.ToArray());
+        }
+    }
+
     private static SpringNetwork WithSpring(SpringNetwork springs)
     {
         springs.Add(0, 1, 3, 0.5, 0.1);
@@ -181,5 +199,37 @@ public class LinearizationBoundsTests
         }
 
         public void AddForces(in ParticleState state, Span<double> forces) => _world.AddParticle(new Vector3d(5, 5, 5), 1);
+    }
+
+    /// <summary>A user force with a (zero) Jacobian that states one coupling to a particle past the world's last.</summary>
+    private sealed class BadCouplings : IForceGenerator, IJacobianCouplings
+    {
+        public int CouplingCount => 1;
+
+        public void AddForces(in ParticleState state, Span<double> forces)
+        {
+        }
+
+        public void Linearize(in ParticleState state, double positionScale, double velocityScale, Span<double> positionJacobianTimesVelocity)
+        {
+        }
+
+        public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
+        {
+        }
+
+        public void AddDiagonalBlocks(Span<double> blocks)
+        {
+        }
+
+        public void WriteCouplings(Span<int> first, Span<int> second)
+        {
+            first[0] = 0;
+            second[0] = 100;
+        }
+
+        public void AddCouplingBlocks(Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock)
+        {
+        }
     }
 }
