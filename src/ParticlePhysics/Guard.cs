@@ -88,6 +88,42 @@ internal static class Guard
         }
     }
 
+    /// <summary>A positive finite <paramref name="value"/> whose inverse is finite too (a length or mass that is divided by).</summary>
+    public static void PositiveWithFiniteInverse(double value, string name, string unit)
+    {
+        PositiveFinite(value, name);
+        if (!DoubleChecks.IsFinite(1.0 / value))
+        {
+            throw new ArgumentOutOfRangeException(
+                name,
+                value,
+                $"{name} must be at least {Format(SmallestMass)} {unit}, so that its inverse is finite; got {Format(value)}.");
+        }
+    }
+
+    /// <summary>
+    /// <paramref name="value"/> / |value| for a finite non-zero vector, also when |value| overflows or underflows
+    /// (computed then from value scaled by its largest component); a vector whose length is a normal double is divided
+    /// by it directly, bit for bit as before.
+    /// </summary>
+    public static Vector3d Direction(Vector3d value, string name)
+    {
+        var length = value.Length;
+        if (value.IsFinite && length > 0.0 && DoubleChecks.IsFinite(length) && length >= 1e-150)
+        {
+            return value / length;
+        }
+
+        var scale = Math.Max(Math.Abs(value.X), Math.Max(Math.Abs(value.Y), Math.Abs(value.Z)));
+        if (!value.IsFinite || !(scale > 0.0))
+        {
+            throw new ArgumentOutOfRangeException(name, value, $"{name} must be a finite non-zero vector; got {value}.");
+        }
+
+        var scaled = value / scale;
+        return scaled / scaled.Length;
+    }
+
     /// <summary>The smallest mass whose inverse is finite: the double just above 1 / double.MaxValue (whose own inverse overflows).</summary>
     public const double SmallestMass = 5.56268464626801e-309;
 

@@ -298,6 +298,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// </summary>
     public void SetRadius(int index, double radius)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.NonNegativeFinite(radius, nameof(radius));
         _radii[index] = radius;

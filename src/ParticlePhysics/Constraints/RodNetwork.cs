@@ -498,7 +498,8 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
         }
 
         Guard.Finite(anchor, nameof(anchor));
-        Guard.PositiveFinite(length, nameof(length));
+        Guard.PositiveWithFiniteInverse(length, nameof(length), "m"); // the solve divides by it
+        _world.ThrowIfStepping();
         if (_count == _first.Length)
         {
             var capacity = Math.Max(4, 2 * _count);
