@@ -83,6 +83,12 @@ internal sealed unsafe class AggregationMultigrid
     public void Setup(ILinearizableSystem system, double[] fineDiagonal, Span<double> masses, Span<double> inverseMasses, IParallelRunner? runner)
     {
         var particles = masses.Length;
+        if (inverseMasses.Length != particles || fineDiagonal.Length < 9L * particles)
+        {
+            throw new ArgumentException(
+                $"The multigrid needs 9 diagonal values and one inverse mass per particle, for {particles} particles.");
+        }
+
         var count = system.CouplingCount;
         if (count != _couplings || particles != _particles || !SameCouplings(system, count))
         {
@@ -116,6 +122,14 @@ internal sealed unsafe class AggregationMultigrid
     /// </summary>
     public double Apply(double[] fineInverse, double[] r, double[] z, Span<double> inverseMasses, IParallelRunner? runner)
     {
+        // The fine passes run their pointers over the particles of the hierarchy: every array must cover them.
+        var particles = inverseMasses.Length;
+        if (particles != _particles || r.Length < 3L * particles || z.Length < 3L * particles || fineInverse.Length < 9L * particles)
+        {
+            throw new InvalidOperationException(
+                $"The multigrid was set up for {_particles} particles; it was applied to {particles}, or to vectors shorter than theirs.");
+        }
+
         var first = _levels[0];
         fixed (double* rp = r, zp = z, inv = fineInverse, w = inverseMasses)
         fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members)

@@ -163,6 +163,28 @@ public class LinearizationBoundsTests
         }
     }
 
+    [Fact]
+    public void The_solvers_pointer_passes_check_their_arrays_where_they_take_the_pointers()
+    {
+        // Internal passes of implicit Euler: each fixed loop runs over 3 values per particle (9 for blocks). A vector
+        // shorter than that is refused where it is bound or passed, instead of being read or written past its end.
+        var passes = new ConjugateGradientPasses();
+        var masses = new double[] { 1, 1, 1, 1 };
+        double[] V(int n) => new double[n];
+        Assert.Throws<ArgumentException>(() => passes.Bind(V(12), V(12), V(12), V(12), V(11), V(12), V(36), masses, masses, null));
+        Assert.Throws<ArgumentException>(() => passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(35), masses, masses, null));
+        passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(36), masses, masses, null);
+        Assert.Throws<ArgumentException>(() => passes.Dot(V(12), V(6)));
+        Assert.Throws<ArgumentException>(() => passes.MassMinusJacobian(V(3)));
+        Assert.Equal(0.0, passes.Dot(V(12), V(12)));
+
+        var (world, _) = Chain(100, springs: 99);
+        var multigrid = new AggregationMultigrid();
+        var worldMasses = world.Masses.ToArray();
+        Assert.Throws<ArgumentException>(() => multigrid.Setup(world, new double[9 * 99], worldMasses, worldMasses, null));
+        Assert.Throws<ArgumentException>(() => multigrid.Setup(world, new double[9 * 100], worldMasses, new double[99], null));
+    }
+
     private static SpringNetwork WithSpring(SpringNetwork springs)
     {
         springs.Add(0, 1, 3, 0.5, 0.1);
