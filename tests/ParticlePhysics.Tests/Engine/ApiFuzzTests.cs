@@ -5,6 +5,7 @@ using System.Globalization;
 using System.IO;
 using System.Numerics;
 using ParticlePhysics.Constraints;
+using ParticlePhysics.Contacts;
 using ParticlePhysics.Driver;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Integrators;
@@ -75,6 +76,7 @@ public class ApiFuzzTests
         Assert.True(fuzzer.FailedSteps > 50, fuzzer.Report());
         Assert.True(fuzzer.FaultFailures > 30, fuzzer.Report());
         Assert.True(fuzzer.Retries > 50, fuzzer.Report());
+        Assert.True(fuzzer.StepsWithImpacts > operations / 200, fuzzer.Report());
     }
 
     /// <summary>What <see cref="Twin.Observe()"/> saw, compared byte for byte.</summary>
@@ -132,11 +134,13 @@ public class ApiFuzzTests
 
         public Dictionary<string, int> RejectionsByType { get; } = new();
 
+        /// <summary>Steps after which the contact set had logged impacts (so that its log was there to keep or restore).</summary>
+        public int StepsWithImpacts { get; private set; }
 
         public string Report() => string.Format(
             CultureInfo.InvariantCulture,
             "seed {0}: {1} operations in {2} sequences, {3} rejected ({4}), {5} steps of which {6} failed, {7} failures "
-            + "caused by an armed fault, {8} retries that matched the clean twin, {9} snapshot round trips",
+            + "caused by an armed fault, {8} retries that matched the clean twin, {9} snapshot round trips, {10} steps with impacts logged",
             _seed,
             Operations,
             _sequence,
@@ -146,7 +150,8 @@ public class ApiFuzzTests
             FailedSteps,
             FaultFailures,
             Retries,
-            SnapshotRoundTrips);
+            SnapshotRoundTrips,
+            StepsWithImpacts);
 
         public void Run(int operations)
         {
@@ -240,6 +245,7 @@ public class ApiFuzzTests
             if (name.StartsWith("step", StringComparison.Ordinal) || name.StartsWith("advance", StringComparison.Ordinal))
             {
                 Steps++;
+                StepsWithImpacts += _a.Contacts.ImpactCount > 0 ? 1 : 0;
             }
 
             Expect(_a.Observe() == _b.Observe(), $"the twins differ after the operation, in {Twin.Difference(_a, _b)}");
@@ -298,7 +304,7 @@ public class ApiFuzzTests
         private (string Name, Action<Twin> Apply) NextOperation()
         {
             var r = _random;
-            switch (r.Next(100))
+            switch (r.Next(106))
             {
                 case < 5 when _a.World.Count < MaxParticles:
                     {
@@ -584,7 +590,7 @@ public class ApiFuzzTests
 
                 case < 95:
                     {
-                        var c = r.Next(2);
+                        var c = r.Next(3);
                         return ($"toggle constraints {c}", t => t.ToggleConstraints(c));
                     }
 
@@ -592,6 +598,52 @@ public class ApiFuzzTests
                     {
                         var (i, target, duration) = (Index(), Vector(-1, 1), r.Value(0.005, 0.1));
                         return ($"move kinematic {i} {target} in {G(duration)}", t => t.World.MoveKinematic(i, target, duration));
+                    }
+
+                case < 100:
+                    {
+                        var (i, anchor) = (r.Next(-1, 3), Vector(-1, 1));
+                        return ($"move zero-length anchor {i} {anchor}", t => t.Zero.SetAnchor(i, anchor));
+                    }
+
+                case < 102:
+                    {
+                        var (i, radius) = (Index(), r.Value(0.0, 0.4));
+                        return ($"set radius {i} {G(radius)}", t => t.World.SetRadius(i, radius));
+                    }
+
+                case < 103:
+                    {
+                        var on = r.Chance(0.5);
+                        return ($"particle collisions {on}", t => t.Contacts.ParticleCollisions = on);
+                    }
+
+                case < 104:
+                    {
+                        var (k, restitution, friction) = (r.Next(2), r.Value(0, 1), r.Value(0, 1));
+                        return ($"obstacle {k} e={G(restitution)} mu={G(friction)}", t =>
+                        {
+                            var obstacle = t.Obstacles[k];
+                            var (e0, mu0) = (obstacle.Restitution, obstacle.Friction);
+                            obstacle.Restitution = restitution;
+                            try
+                            {
+                                obstacle.Friction = friction;
+                            }
+                            catch (ArgumentException)
+                            {
+                                obstacle.Restitution = e0; // the pair of settings is all or nothing
+                                obstacle.Friction = mu0;
+                                throw;
+                            }
+                        }
+                        );
+                    }
+
+                case < 105:
+                    {
+                        var k = r.Next(2);
+                        return ($"toggle obstacle {k}", t => t.ToggleObstacle(k));
                     }
 
                 default:
@@ -650,7 +702,10 @@ public class ApiFuzzTests
             };
             Rods = new RodNetwork(World);
             Projection = new SpringProjection(Springs);
-            _constraints = new IConstraintSet[] { Rods, Projection };
+            Obstacles = new Obstacle[] { new PlaneObstacle(new Vector3d(0, -1, 0), new Vector3d(0, 1, 0), 0.5, 0.3), new SphereObstacle(new Vector3d(0, -0.6, 0), 0.3, 0.2) };
+            Contacts = new ContactSet();
+            Contacts.Add(Obstacles[0]);
+            _constraints = new IConstraintSet[] { Rods, Projection, Contacts };
             Driver = new FixedTimestepDriver(World, Integrators[4], 0.005, 2);
         }
 
@@ -665,6 +720,10 @@ public class ApiFuzzTests
         public RodNetwork Rods { get; }
 
         public SpringProjection Projection { get; }
+
+        public ContactSet Contacts { get; }
+
+        public Obstacle[] Obstacles { get; }
 
         public FaultyForce Faulty { get; } = new();
 
@@ -705,6 +764,14 @@ public class ApiFuzzTests
         }
 
         public void AddAgain(int g, Twin owner) => World.AddForce(owner._generators[g]);
+
+        public void ToggleObstacle(int k)
+        {
+            if (!Contacts.Remove(Obstacles[k]))
+            {
+                Contacts.Add(Obstacles[k]);
+            }
+        }
 
         public void ToggleConstraints(int c)
         {
@@ -762,16 +829,17 @@ public class ApiFuzzTests
             {
                 if (!a.Observe(part).AsSpan().SequenceEqual(b.Observe(part)))
                 {
-                    differing.Add(part < 8 ? _partNames[part] : $"{_integratorNames[part - 8]}'s state");
+                    differing.Add(part < FirstIntegratorPart ? _partNames[part] : $"{_integratorNames[part - FirstIntegratorPart]}'s state");
                 }
             }
 
             return string.Join(", ", differing);
         }
 
-        private const int Parts = 8 + IntegratorCount;
+        private const int FirstIntegratorPart = 9;
+        private const int Parts = FirstIntegratorPart + IntegratorCount;
 
-        private static readonly string[] _partNames = { "count, time, limit", "state", "masses", "inverse masses", "pins", "forces", "element counts", "driver" };
+        private static readonly string[] _partNames = { "count, time, limit", "state", "masses", "inverse masses", "pins", "forces", "element counts", "driver", "radii, contacts and rods" };
 
         /// <summary>Everything a call may change, as bytes: world, forces, constraints, integrator states, driver, rendering.</summary>
         public Observation Observe() => new(Observe(-1));
@@ -864,9 +932,43 @@ public class ApiFuzzTests
                     }
                 }
 
+                if (Part(8))
+                {
+                    foreach (var radius in World.Radii)
+                    {
+                        w.Write(radius);
+                    }
+
+                    w.Write(Contacts.ParticleCollisions);
+                    w.Write(Contacts.Obstacles.Count);
+                    foreach (var obstacle in Obstacles)
+                    {
+                        w.Write(System.Linq.Enumerable.Contains(Contacts.Obstacles, obstacle));
+                        w.Write(obstacle.Restitution);
+                        w.Write(obstacle.Friction);
+                    }
+
+                    w.Write(Contacts.ImpactCount);
+                    w.Write(Contacts.CandidatePairCount);
+                    foreach (var impact in Contacts.Impacts)
+                    {
+                        w.Write(impact.Time);
+                        w.Write(impact.Particle);
+                        w.Write(impact.Other);
+                        w.Write(impact.WithObstacle);
+                        w.Write(impact.NormalSpeed);
+                        w.Write(impact.Resting);
+                    }
+
+                    for (var link = 0; link < Rods.Count; link++)
+                    {
+                        w.Write(Rods.GetTension(link));
+                    }
+                }
+
                 for (var k = 0; k < IntegratorCount; k++)
                 {
-                    if (Part(8 + k) && Integrators[k] is IStatefulIntegrator stateful)
+                    if (Part(FirstIntegratorPart + k) && Integrators[k] is IStatefulIntegrator stateful)
                     {
                         var state = new double[stateful.StateLength];
                         stateful.WriteState(state);

@@ -1,5 +1,7 @@
 using System;
+using System.Buffers.Binary;
 using System.IO;
+using ParticlePhysics.Contacts;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Integrators;
 using ParticlePhysics.Snapshots;
@@ -25,13 +27,17 @@ public class SnapshotMutationTests
         _output = output;
     }
 
-    public static TheoryData<string> Integrators() => new() { "implicit-euler", "rk45", "rk4" };
+    /// <summary>Each integrator's snapshot in the current format (2, with radii) and in format 1 (without), which is still read.</summary>
+    public static TheoryData<string, int> Integrators() => new()
+    {
+        { "implicit-euler", 2 }, { "rk45", 2 }, { "rk4", 2 }, { "implicit-euler", 1 }, { "rk45", 1 }, { "rk4", 1 },
+    };
 
     [Theory]
     [MemberData(nameof(Integrators))]
-    public void Every_flipped_bit_is_rejected(string integrator)
+    public void Every_flipped_bit_is_rejected(string integrator, int version)
     {
-        var bytes = Serialized(integrator);
+        var bytes = Serialized(integrator, version);
         for (var i = 0; i < bytes.Length; i++)
         {
             for (var bit = 0; bit < 8; bit++)
@@ -46,9 +52,9 @@ public class SnapshotMutationTests
 
     [Theory]
     [MemberData(nameof(Integrators))]
-    public void A_stream_cut_at_every_length_is_rejected_as_truncated(string integrator)
+    public void A_stream_cut_at_every_length_is_rejected_as_truncated(string integrator, int version)
     {
-        var bytes = Serialized(integrator);
+        var bytes = Serialized(integrator, version);
         for (var length = 0; length < bytes.Length; length++)
         {
             foreach (var seekable in new[] { true, false })
@@ -63,9 +69,9 @@ public class SnapshotMutationTests
 
     [Theory]
     [MemberData(nameof(Integrators))]
-    public void Bytes_appended_after_a_snapshot_are_left_in_the_stream(string integrator)
+    public void Bytes_appended_after_a_snapshot_are_left_in_the_stream(string integrator, int version)
     {
-        var bytes = Serialized(integrator);
+        var bytes = Serialized(integrator, version);
         var random = new SeededRandom(11);
         foreach (var extra in new[] { 1, 3, 28, 1000 })
         {
@@ -79,15 +85,15 @@ public class SnapshotMutationTests
             stream.Position = 0;
             var snapshot = SimulationSnapshot.ReadFrom(stream);
             Assert.Equal(bytes.Length, stream.Position);
-            Assert.Equal(bytes, Written(snapshot));
+            Assert.Equal(version == 2 ? bytes : Serialized(integrator, 2, radii: false), Written(snapshot));
         }
     }
 
     [Theory]
     [MemberData(nameof(Integrators))]
-    public void Every_byte_edited_with_a_valid_checksum_is_rejected_or_accepted_and_consistent(string integrator)
+    public void Every_byte_edited_with_a_valid_checksum_is_rejected_or_accepted_and_consistent(string integrator, int version)
     {
-        var bytes = Serialized(integrator);
+        var bytes = Serialized(integrator, version);
         var random = new SeededRandom(23);
         var accepted = 0;
         for (var i = 0; i < bytes.Length - 4; i++)
@@ -100,7 +106,7 @@ public class SnapshotMutationTests
                 }
 
                 var edited = WithCrc(bytes, b => b[i] = value);
-                accepted += Check(edited, integrator, $"byte {i} set to 0x{value:X2}") ? 1 : 0;
+                accepted += Check(edited, integrator, version, $"byte {i} set to 0x{value:X2}") ? 1 : 0;
             }
         }
 
@@ -111,9 +117,9 @@ public class SnapshotMutationTests
 
     [Theory]
     [MemberData(nameof(Integrators))]
-    public void Thousands_of_random_multi_byte_mutations_are_rejected_or_accepted_and_consistent(string integrator)
+    public void Thousands_of_random_multi_byte_mutations_are_rejected_or_accepted_and_consistent(string integrator, int version)
     {
-        var bytes = Serialized(integrator);
+        var bytes = Serialized(integrator, version);
         var random = new SeededRandom(5000 + (ulong)integrator.Length);
         var accepted = 0;
         for (var m = 0; m < 2000; m++)
@@ -135,7 +141,7 @@ public class SnapshotMutationTests
                 edited = WithCrc(edited, _ => { });
             }
 
-            accepted += Check(edited, integrator, $"mutation {m}") ? 1 : 0;
+            accepted += Check(edited, integrator, version, $"mutation {m}") ? 1 : 0;
         }
 
         _output.WriteLine($"{integrator}: 2000 random mutations, {accepted} accepted and consistent, {2000 - accepted} rejected");
@@ -160,7 +166,7 @@ public class SnapshotMutationTests
     /// Reads <paramref name="bytes"/>; when accepted, restores it into a world built like the original and checks the
     /// world. Returns whether the snapshot was accepted.
     /// </summary>
-    private static bool Check(byte[] bytes, string integrator, string what)
+    private static bool Check(byte[] bytes, string integrator, int version, string what)
     {
         var before = GC.GetAllocatedBytesForCurrentThread();
         SimulationSnapshot? snapshot = null;
@@ -182,8 +188,18 @@ public class SnapshotMutationTests
             return false;
         }
 
-        // Accepted: it writes back to the same bytes, and restores into a world whole or not at all.
-        Assert.Equal(bytes.AsSpan(0, snapshot!.SerializedLength).ToArray(), Written(snapshot));
+        // Accepted: it writes back to the same bytes (a format 1 stream: to the same values in format 2, radius 0), and
+        // restores into a world whole or not at all.
+        if (version == 2)
+        {
+            Assert.Equal(bytes.AsSpan(0, snapshot!.SerializedLength).ToArray(), Written(snapshot));
+        }
+        else
+        {
+            Assert.All(snapshot!.Radii.ToArray(), r => Assert.Equal(0.0, r));
+            Assert.Equal(Written(snapshot), Written(SimulationSnapshot.ReadFrom(new MemoryStream(Written(snapshot)))));
+        }
+
         var world = World();
         var method = IntegratorCatalog.Create(integrator);
         world.Step(method, 0.01);
@@ -249,17 +265,47 @@ public class SnapshotMutationTests
         springs.Add(1, 2, 20, 0.5, 0.1);
         world.AddForce(springs);
         world.AddForce(new Gravity());
+
+        // Radii (format 2) that the contact stage reads: the lowest particle reaches the ground within a few steps.
+        world.SetRadius(0, 0.05);
+        world.SetRadius(1, 0.1);
+        world.SetRadius(2, 0.02);
+        var contacts = new ContactSet { ParticleCollisions = true };
+        contacts.Add(new PlaneObstacle(new Vector3d(0, -0.45, 0), new Vector3d(0, 1, 0), 0.5, 0.2));
+        world.AddConstraints(contacts);
         return world;
     }
 
-    private static byte[] Serialized(string integrator)
+    /// <summary>The snapshot's bytes in format <paramref name="version"/> (1: the format 2 layout without the radii).</summary>
+    private static byte[] Serialized(string integrator, int version = 2, bool radii = true)
     {
         var world = World();
+        if (!radii)
+        {
+            for (var i = 0; i < world.Count; i++)
+            {
+                world.SetRadius(i, 0);
+            }
+        }
+
         var method = IntegratorCatalog.Create(integrator);
         StateMetrics.Run(world, method, 0.01, 5); // implicit Euler's warm start holds two steps
         var stream = new MemoryStream();
         SimulationSnapshot.Capture(world, method).WriteTo(stream);
-        return stream.ToArray();
+        var v2 = stream.ToArray();
+        if (version == 2)
+        {
+            return v2;
+        }
+
+        var n = world.Count;
+        var at = 28 + BinaryPrimitives.ReadInt32LittleEndian(v2.AsSpan(12)) + (57 * n);
+        var v1 = new byte[v2.Length - (8 * n)];
+        Array.Copy(v2, v1, at);
+        Array.Copy(v2, at + (8 * n), v1, at, v2.Length - at - (8 * n));
+        BinaryPrimitives.WriteUInt16LittleEndian(v1.AsSpan(4), 1);
+        BinaryPrimitives.WriteUInt32LittleEndian(v1.AsSpan(v1.Length - 4), Crc32.Compute(v1.AsSpan(0, v1.Length - 4)));
+        return v1;
     }
 
     private static byte[] Written(SimulationSnapshot snapshot)
@@ -286,6 +332,7 @@ public class SnapshotMutationTests
             StateMetrics.BitHash(world.InverseMasses),
             StateMetrics.BitHash(pins),
             StateMetrics.BitHash(new[] { world.Time }),
+            StateMetrics.BitHash(world.Radii),
             StateMetrics.BitHash(state));
     }
 
