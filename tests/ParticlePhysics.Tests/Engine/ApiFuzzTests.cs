@@ -304,7 +304,7 @@ public class ApiFuzzTests
         private (string Name, Action<Twin> Apply) NextOperation()
         {
             var r = _random;
-            switch (r.Next(106))
+            switch (r.Next(108))
             {
                 case < 5 when _a.World.Count < MaxParticles:
                     {
@@ -590,7 +590,7 @@ public class ApiFuzzTests
 
                 case < 95:
                     {
-                        var c = r.Next(3);
+                        var c = r.Next(4);
                         return ($"toggle constraints {c}", t => t.ToggleConstraints(c));
                     }
 
@@ -644,6 +644,21 @@ public class ApiFuzzTests
                     {
                         var k = r.Next(2);
                         return ($"toggle obstacle {k}", t => t.ToggleObstacle(k));
+                    }
+
+                case < 107:
+                    {
+                        // A constraint set (in the world once toggled in) that throws or writes NaN or infinity from
+                        // Resolve, Project or SolveVelocities: the first twin's only, as for the faulty forces.
+                        var (fault, after, particle) = (r.Pick(Fault.Throw, Fault.NaN, Fault.Infinity), r.Next(0, 6), r.Next(0, 6));
+                        return ($"arm constraints {fault} after {after} at {particle}", t =>
+                        {
+                            if (ReferenceEquals(t, _a))
+                            {
+                                t.FaultyConstraints.Arm(fault, after, particle);
+                            }
+                        }
+                        );
                     }
 
                 default:
@@ -705,7 +720,7 @@ public class ApiFuzzTests
             Obstacles = new Obstacle[] { new PlaneObstacle(new Vector3d(0, -1, 0), new Vector3d(0, 1, 0), 0.5, 0.3), new SphereObstacle(new Vector3d(0, -0.6, 0), 0.3, 0.2) };
             Contacts = new ContactSet();
             Contacts.Add(Obstacles[0]);
-            _constraints = new IConstraintSet[] { Rods, Projection, Contacts };
+            _constraints = new IConstraintSet[] { Rods, Projection, Contacts, FaultyConstraints };
             Driver = new FixedTimestepDriver(World, Integrators[4], 0.005, 2);
         }
 
@@ -729,11 +744,13 @@ public class ApiFuzzTests
 
         public FaultyJacobianDrag FaultyJacobian { get; } = new();
 
+        public FaultyConstraintSet FaultyConstraints { get; } = new();
+
         public IIntegrator[] Integrators { get; }
 
         public FixedTimestepDriver Driver { get; set; }
 
-        public bool IsArmed => Faulty.Armed != Fault.None || FaultyJacobian.Armed;
+        public bool IsArmed => Faulty.Armed != Fault.None || FaultyJacobian.Armed || FaultyConstraints.Armed != Fault.None;
 
         public static string IntegratorName(int k) => _integratorNames[k];
 
@@ -753,6 +770,7 @@ public class ApiFuzzTests
         {
             Faulty.Arm(Fault.None);
             FaultyJacobian.Armed = false;
+            FaultyConstraints.Arm(Fault.None, 0, 0);
         }
 
         public void Toggle(int g)
@@ -1001,6 +1019,53 @@ public class ApiFuzzTests
                 var inverse = World.InverseMasses[i];
                 expect(m > 0 && double.IsFinite(m) && double.IsFinite(1 / m), $"particle {i} has mass {m}");
                 expect(World.IsPinned(i) ? inverse == 0 : inverse == 1 / m, $"particle {i}'s inverse mass {inverse} does not match its mass {m}");
+            }
+        }
+    }
+
+    /// <summary>
+    /// A constraint set that does nothing until armed, then fails as told on its <c>after</c>-th call from the arming
+    /// on (Resolve after a force-based step; Project and SolveVelocities in xpbd's substeps).
+    /// </summary>
+    private sealed class FaultyConstraintSet : IConstraintSet
+    {
+        private int _after;
+        private int _particle;
+        private int _calls;
+
+        public Fault Armed { get; private set; }
+
+        public void Arm(Fault fault, int after, int particle)
+        {
+            Armed = fault;
+            _after = after;
+            _particle = particle;
+            _calls = 0;
+        }
+
+        public void Resolve(in ConstraintContext context) => Call(context.Positions, context.Velocities);
+
+        public void Project(in ConstraintContext context) => Call(context.Positions, context.Velocities);
+
+        public void SolveVelocities(in ConstraintContext context) => Call(context.Positions, context.Velocities);
+
+        private void Call(Span<double> positions, Span<double> velocities)
+        {
+            if (Armed == Fault.None || _calls++ < _after || 3 * _particle >= positions.Length)
+            {
+                return;
+            }
+
+            switch (Armed)
+            {
+                case Fault.Throw:
+                    throw new InvalidOperationException("FaultyConstraintSet: armed to throw.");
+                case Fault.NaN:
+                    velocities[(3 * _particle) + 1] = double.NaN;
+                    break;
+                case Fault.Infinity:
+                    positions[3 * _particle] = double.PositiveInfinity;
+                    break;
             }
         }
     }
