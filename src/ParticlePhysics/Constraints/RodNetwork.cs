@@ -886,7 +886,12 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
         _gradient = new double[3 * n];
         _rhs = new double[n];
         _lambda = new double[n];
-        _tension = new double[n];
+
+        // The tensions of the links there were stay what the last evaluation found (a rebuild because particles were
+        // added, or links, changes none of them); new links read 0 until evaluated.
+        var tension = new double[n];
+        _tension.AsSpan(0, Math.Min(_tension.Length, n)).CopyTo(tension);
+        _tension = tension;
         _active = new bool[n];
         if (bandwidth <= MaxDirectBandwidth)
         {

@@ -3,6 +3,7 @@ using System.Collections.Generic;
 using System.Diagnostics;
 using System.Globalization;
 using System.IO;
+using System.Linq;
 using System.Numerics;
 using ParticlePhysics.Constraints;
 using ParticlePhysics.Contacts;
@@ -851,8 +852,22 @@ public class ApiFuzzTests
                 }
             }
 
+            if (!a.Observe(8).AsSpan().SequenceEqual(b.Observe(8)))
+            {
+                differing.Add($"(first: {a.Logs()}; second: {b.Logs()})");
+            }
+
             return string.Join(", ", differing);
         }
+
+        private string Logs() => string.Format(
+            CultureInfo.InvariantCulture,
+            "radii [{0}], {1} impacts [{2}], {3} pairs, tensions [{4}]",
+            string.Join(" ", World.Radii.ToArray()),
+            Contacts.ImpactCount,
+            string.Join(" ", Contacts.Impacts.ToArray().Select(i => $"{i.Time:R}/{i.Particle}/{i.Other}/{i.WithObstacle}/{i.NormalSpeed:R}/{i.Resting}")),
+            Contacts.CandidatePairCount,
+            string.Join(" ", Enumerable.Range(0, Rods.Count).Select(Rods.GetTension)));
 
         private const int FirstIntegratorPart = 9;
         private const int Parts = FirstIntegratorPart + IntegratorCount;

@@ -74,6 +74,27 @@ public class FailedStepConstraintStateTests
     }
 
     [Fact]
+    public void Adding_a_particle_keeps_the_rods_tensions_so_a_failed_step_and_its_retry_agree_with_a_clean_step()
+    {
+        // Found by the API fuzzer (seed 7): after a particle was added, the next rods call rebuilt their topology and
+        // reset every tension to 0. A step that failed had rebuilt it, and its discard put the old tensions back, so
+        // its retry (an xpbd step, which evaluates no constraint force) showed them, and the clean twin's step 0s.
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(1, 0, 0), 1.0);
+        world.AddForce(new Gravity());
+        var rods = new RodNetwork(world);
+        rods.AddAnchoredRod(0, Vector3d.Zero, 1.0);
+        world.AddConstraints(rods);
+        world.Step(new RungeKutta4(), 0.05);
+        var tension = rods.GetTension(0);
+        Assert.True(tension > 0.0, $"tension {tension}");
+
+        world.AddParticle(new Vector3d(0, 5, 0), 1.0);
+        world.Step(new Xpbd(2), 0.01);
+        Assert.Equal(tension, rods.GetTension(0));
+    }
+
+    [Fact]
     public void A_failed_frame_of_the_driver_leaves_the_impact_log_of_before_the_frame()
     {
         // Two fixed steps in one frame: the first logs particle 0's impact and is committed by the world, the second
