@@ -105,6 +105,8 @@ public class DemoBadInputTests
     [InlineData("substeps for the bouncing ball", "bouncing-ball --integrator xpbd --substeps 0", "--substeps", "'0'", "1 to 1000")]
     [InlineData("xpbd substeps for the drape", "drape --integrator xpbd --substeps 1001", "--substeps", "'1001'")]
     [InlineData("convergence of the drape", "convergence drape", "drape", "free-fall")]
+    [InlineData("replay page to a folder", "cloth --animate /tmp", "--animate", "'/tmp'", "folder")]
+    [InlineData("replay page into a folder that refuses new files", "bouncing-ball --animate /proc/x.html", "--animate", "/proc/x.html")]
     public void Is_refused_with_one_error_line_and_exit_code_2(string what, string commandLine, params string[] mentioned)
     {
         var result = DemoProcess.Run(commandLine.Split(' '));
