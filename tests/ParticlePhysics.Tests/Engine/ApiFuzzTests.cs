@@ -205,6 +205,7 @@ public class ApiFuzzTests
             var armed = _a.IsArmed;
             (SimulationSnapshot World, double[][] Integrators)? saved = armed ? _a.Save() : null;
             var failureA = Attempt(apply, _a);
+            var attempts = $"first twin: {Describe(failureA)}";
             if (armed && failureA is not null)
             {
                 // The call failed with a fault armed: the first twin must be as it was, and a retry without the fault
@@ -213,12 +214,14 @@ public class ApiFuzzTests
                 _a.Disarm();
                 if (_random.Chance(0.5))
                 {
+                    attempts += ", restored from the snapshot";
                     _a.Restore(saved!.Value);
                     Expect(_a.Observe() == beforeA, "restoring the snapshot taken before the failed call changed the world");
                 }
 
                 var first = Describe(failureA);
                 failureA = Attempt(apply, _a);
+                attempts += $", retried without the fault: {Describe(failureA)}";
                 Retries++;
                 if (Describe(failureA) != first)
                 {
@@ -227,6 +230,7 @@ public class ApiFuzzTests
             }
 
             var failureB = Attempt(apply, _b);
+            attempts += $"; clean twin: {Describe(failureB)}";
             Expect(
                 Describe(failureA) == Describe(failureB),
                 $"the twins disagree: {Describe(failureA)} against {Describe(failureB)}");
@@ -249,7 +253,7 @@ public class ApiFuzzTests
                 StepsWithImpacts += _a.Contacts.ImpactCount > 0 ? 1 : 0;
             }
 
-            Expect(_a.Observe() == _b.Observe(), $"the twins differ after the operation, in {Twin.Difference(_a, _b)}");
+            Expect(_a.Observe() == _b.Observe(), $"the twins differ after the operation ({attempts}), in {Twin.Difference(_a, _b)}");
             _a.CheckInvariants(Expect);
         }
 
