@@ -26,6 +26,8 @@ namespace ParticlePhysics.Benchmarks;
 /// (<see cref="XpbdComparison"/>).</item>
 /// <item><c>quality [--n 64]</c>: each solver's cloth after 5 s against RK4 at a small dt: lowest point, stretch of
 /// the structural springs (<see cref="ClothQuality"/>; deterministic, no timing).</item>
+/// <item><c>costs [batches]</c>: the cost of a step per step, per particle and per spring for each integrator, the
+/// constants of the demo's run-cost estimate (<see cref="StepCosts"/>).</item>
 /// <item><c>--quick</c> (before BenchmarkDotNet's arguments): small cloths, for CI.</item>
 /// </list>
 /// After a BenchmarkDotNet run it exits 1 if any benchmark failed or has no result (NA).
@@ -57,6 +59,11 @@ internal static class Program
         if (args.Length > 0 && args[0] == "quality")
         {
             return ClothQuality.Run(args[1..]);
+        }
+
+        if (args.Length > 0 && args[0] == "costs")
+        {
+            return StepCosts.Run(args[1..]);
         }
 
         var quick = args.Length > 0 && args[0] == "--quick";

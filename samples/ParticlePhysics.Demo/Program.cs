@@ -1,5 +1,6 @@
 using System;
 using System.CommandLine;
+using System.Globalization;
 using System.IO;
 using System.Text;
 using System.Threading;
@@ -52,6 +53,13 @@ internal static class Program
     {
         var context = new DemoContext(output, error, errorIsTerminal, outputIsTerminal, cancellation);
         var root = DemoCommandLine.Build(context);
+
+        // One language and one number format whatever the machine's locale: System.CommandLine's own messages (a
+        // missing value, the help's headings) follow the UI culture, and the help's defaults the culture (0,01 under
+        // fr_FR, which the parser, invariant as the contract says, would then refuse).
+        var (culture, uiCulture) = (CultureInfo.CurrentCulture, CultureInfo.CurrentUICulture);
+        CultureInfo.CurrentCulture = CultureInfo.InvariantCulture;
+        CultureInfo.CurrentUICulture = CultureInfo.InvariantCulture;
         try
         {
             var parse = root.Parse(args);
@@ -72,6 +80,11 @@ internal static class Program
             var message = exception.Message.Split('\n')[0];
             var suffix = message.IndexOf(" (Parameter '", StringComparison.Ordinal);
             return Fail(output, error, suffix >= 0 ? message[..suffix] : message);
+        }
+        finally
+        {
+            CultureInfo.CurrentCulture = culture;
+            CultureInfo.CurrentUICulture = uiCulture;
         }
     }
 

@@ -76,6 +76,13 @@ internal sealed class FiniteDifferenceJacobian : IForceJacobian
 
     private void Directional(ReadOnlySpan<double> w, double a, double b, Span<double> result)
     {
+        if (w.Length != _x.Length || result.Length != _x.Length)
+        {
+            throw new InvalidOperationException(
+                $"The finite-difference Jacobian was linearised over {_x.Length} values; a product of {w.Length} into "
+                + $"{result.Length} needs a Linearize at the current world first.");
+        }
+
         var wr = w.ForReading();
         var size = 0.0;
         for (var k = 0; k < w.Length; k++)

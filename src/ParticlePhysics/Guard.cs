@@ -47,8 +47,85 @@ internal static class Guard
         }
     }
 
-    public static void Mass(double mass, string name) =>
+    /// <summary>
+    /// A step of <paramref name="dt"/> from <paramref name="time"/> must end at a finite time (a state at t = inf cannot
+    /// be saved or read back) that is later than its start: a dt that vanishes against t (1e-3 from t = 1e20) would be a
+    /// step that moves nothing yet reports success, and lets an integrator keep state from a step that never ran.
+    /// </summary>
+    public static void FiniteEndTime(double time, double dt)
+    {
+        var end = time + dt;
+        if (!DoubleChecks.IsFinite(end))
+        {
+            throw new ArgumentOutOfRangeException(
+                "dt",
+                dt,
+                $"dt = {Format(dt)} from t = {Format(time)} would end the step at t = {Format(end)}; the end time must be finite.");
+        }
+
+        if (!(end > time))
+        {
+            throw new ArgumentOutOfRangeException(
+                "dt",
+                dt,
+                $"dt = {Format(dt)} does not advance t = {Format(time)}: t + dt rounds to t. Take a larger dt, or start the time nearer 0.");
+        }
+    }
+
+    /// <summary>
+    /// A mass: positive, finite, and large enough that its inverse 1 / m is finite too (m &gt;= 1 / double.MaxValue,
+    /// about 5.6e-309), since every integrator divides by it.
+    /// </summary>
+    public static void Mass(double mass, string name)
+    {
         PositiveFinite(mass, name, "Pin the particle to make it immovable.");
+        if (!DoubleChecks.IsFinite(1.0 / mass))
+        {
+            throw new ArgumentOutOfRangeException(
+                name,
+                mass,
+                $"{name} must be at least {Format(SmallestMass)} kg, so that its inverse is finite; got {Format(mass)}.");
+        }
+    }
+
+    /// <summary>A positive finite <paramref name="value"/> whose inverse is finite too (a length or mass that is divided by).</summary>
+    public static void PositiveWithFiniteInverse(double value, string name, string unit)
+    {
+        PositiveFinite(value, name);
+        if (!DoubleChecks.IsFinite(1.0 / value))
+        {
+            throw new ArgumentOutOfRangeException(
+                name,
+                value,
+                $"{name} must be at least {Format(SmallestMass)} {unit}, so that its inverse is finite; got {Format(value)}.");
+        }
+    }
+
+    /// <summary>
+    /// <paramref name="value"/> / |value| for a finite non-zero vector, also when |value| overflows or underflows
+    /// (computed then from value scaled by its largest component); a vector whose length is a normal double is divided
+    /// by it directly, bit for bit as before.
+    /// </summary>
+    public static Vector3d Direction(Vector3d value, string name)
+    {
+        var length = value.Length;
+        if (value.IsFinite && length > 0.0 && DoubleChecks.IsFinite(length) && length >= 1e-150)
+        {
+            return value / length;
+        }
+
+        var scale = Math.Max(Math.Abs(value.X), Math.Max(Math.Abs(value.Y), Math.Abs(value.Z)));
+        if (!value.IsFinite || !(scale > 0.0))
+        {
+            throw new ArgumentOutOfRangeException(name, value, $"{name} must be a finite non-zero vector; got {value}.");
+        }
+
+        var scaled = value / scale;
+        return scaled / scaled.Length;
+    }
+
+    /// <summary>The smallest mass whose inverse is finite: the double just above 1 / double.MaxValue (whose own inverse overflows).</summary>
+    public const double SmallestMass = 5.56268464626801e-309;
 
     public static void ParticleIndex(int index, int count, string name)
     {

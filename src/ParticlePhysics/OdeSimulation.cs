@@ -63,6 +63,9 @@ public sealed class OdeSimulation
     }
 
     /// <summary>Advances by one step of <paramref name="dt"/> with <paramref name="integrator"/>.</summary>
+    /// <exception cref="ArgumentOutOfRangeException">
+    /// <paramref name="dt"/> is not a positive finite number, or <see cref="Time"/> + <paramref name="dt"/> is not finite.
+    /// </exception>
     /// <exception cref="SimulationDivergedException">
     /// The step's result is not finite (or beyond <see cref="DivergenceLimit"/>); the state is left as it was.
     /// </exception>
@@ -70,14 +73,33 @@ public sealed class OdeSimulation
     {
         Guard.NotNull(integrator, nameof(integrator));
         Guard.PositiveFinite(dt, nameof(dt));
-        integrator.Step(System, Time, _state, _next, dt);
-        var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
-        if (bad >= 0)
+        Guard.FiniteEndTime(Time, dt);
+        var stateful = integrator as IStatefulIntegrator;
+        var committed = false;
+        try
         {
-            throw new SimulationDivergedException(Time + dt, Time, bad, -1, _next[bad], _divergenceLimit);
-        }
+            integrator.Step(System, Time, _state, _next, dt);
+            var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
+            if (bad >= 0)
+            {
+                throw new SimulationDivergedException(Time + dt, Time, bad, -1, _next[bad], _divergenceLimit);
+            }
 
-        _next.AsSpan().CopyTo(_state);
-        Time += dt;
+            _next.AsSpan().CopyTo(_state);
+            Time += dt;
+            committed = true;
+        }
+        finally
+        {
+            // As in ParticleWorld.Step: a stateful integrator keeps the state of a committed step only.
+            if (committed)
+            {
+                stateful?.CommitStep();
+            }
+            else
+            {
+                stateful?.DiscardStep();
+            }
+        }
     }
 }

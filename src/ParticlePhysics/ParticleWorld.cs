@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using System.Globalization;
 using System.Numerics;
 using ParticlePhysics.Numerics;
 using ParticlePhysics.Parallel;
@@ -47,6 +48,13 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     private double[] _next = Array.Empty<double>();
     private int _capacity;
     private int _count;
+
+    // Bumped whenever particles or generators are added or removed: products and blocks need a Linearize of the
+    // world as it is (its buffers' sizes and its generators' linearisations follow the particles and the generators).
+    private int _structureVersion;
+    private int _linearizedVersion = -1;
+    private bool _stepping;
+    private int _frameDepth; // open FixedTimestepDriver frames: their steps leave the constraint sets' bracket to them
     private double _time;
     private double _divergenceLimit = DefaultDivergenceLimit;
 
@@ -69,7 +77,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// </summary>
     public const int MaxParticles = 2048 * 2048;
 
-    /// <summary>The default <see cref="DivergenceLimit"/>: 1e12 (metres, metres per second).</summary>
+    /// <summary>The default <see cref="DivergenceLimit"/>: 1e12 m/s, some 3,000 times the speed of light.</summary>
     public const double DefaultDivergenceLimit = 1e12;
 
     /// <summary>The number of particles.</summary>
@@ -83,11 +91,16 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     public IParallelRunner? Runner { get; set; }
 
     /// <summary>
-    /// The largest magnitude a position or velocity coordinate may reach: a step that produces a larger value, NaN
-    /// or infinity throws <see cref="SimulationDivergedException"/> and is not committed. The default, 1e12 m and
-    /// m/s, is far beyond any game world or course scenario, yet catches a blow-up long before it overflows (an
-    /// unstable cloth passes 1e5 m within a quarter second but takes seconds more to reach infinity), so the state
-    /// left in place is one worth retrying from. Set <see cref="double.MaxValue"/> to stop only at non-finite values.
+    /// The largest magnitude a velocity component may reach, in m/s: a step that produces a faster particle, or any
+    /// position or velocity that is NaN or infinite, throws <see cref="SimulationDivergedException"/> and is not
+    /// committed. Positions may take any finite value, so a world of any size runs (a free fall from 1.1e12 m as one
+    /// from 300 m). The default, 1e12 m/s (3,000 times the speed of light), is beyond any game world or course
+    /// scenario, yet catches a blow-up long before it overflows, so the state left in place is one worth retrying
+    /// from: positions grow only through velocities, and an unstable cloth's speeds pass 1e12 m/s within a quarter
+    /// second, seconds before anything reaches infinity. The bound is on speeds rather than on coordinates because a
+    /// coordinate bound must know the world's size, and one taken from the world itself either follows the blow-up
+    /// (from the current state) or depends on history that a snapshot does not hold; a speed bound depends only on the
+    /// step's result. Set <see cref="double.MaxValue"/> to stop only at non-finite values.
     /// </summary>
     public double DivergenceLimit
     {
@@ -105,6 +118,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         get => _time;
         set
         {
+            ThrowIfStepping();
             Guard.Finite(value, nameof(Time));
             _time = value;
         }
@@ -168,6 +182,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <returns>The new particle's index (particles are numbered in creation order from 0).</returns>
     public int AddParticle(Vector3d position, Vector3d velocity, double mass)
     {
+        ThrowIfStepping();
         Guard.Finite(position, nameof(position));
         Guard.Finite(velocity, nameof(velocity));
         Guard.Mass(mass, nameof(mass));
@@ -182,6 +197,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         }
 
         var index = _count++;
+        _structureVersion++;
         WritePosition(index, position);
         WriteVelocity(index, velocity);
         _masses[index] = mass;
@@ -201,6 +217,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <summary>Moves a particle (pinned particles too: this is how a host drags an attachment point).</summary>
     public void SetPosition(int index, Vector3d position)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Finite(position, nameof(position));
         WritePosition(index, position);
@@ -220,6 +237,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// </summary>
     public void SetVelocity(int index, Vector3d velocity)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Finite(velocity, nameof(velocity));
         WriteVelocity(index, velocity);
@@ -234,6 +252,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <exception cref="InvalidOperationException">The particle is not pinned (forces move a free particle).</exception>
     public void MoveKinematic(int index, Vector3d target, double duration)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Finite(target, nameof(target));
         Guard.PositiveFinite(duration, nameof(duration));
@@ -258,6 +277,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <summary>Changes the mass of a particle (a positive finite number of kilograms).</summary>
     public void SetMass(int index, double mass)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Mass(mass, nameof(mass));
         _masses[index] = mass;
@@ -278,6 +298,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// </summary>
     public void SetRadius(int index, double radius)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.NonNegativeFinite(radius, nameof(radius));
         _radii[index] = radius;
@@ -303,6 +324,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// </summary>
     public void Pin(int index, Vector3d velocity)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Finite(velocity, nameof(velocity));
         _pinned[index] = true;
@@ -316,6 +338,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// </summary>
     public void Unpin(int index)
     {
+        ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         _pinned[index] = false;
         _inverseMasses[index] = 1.0 / _masses[index];
@@ -327,6 +350,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// </summary>
     public void SetState(ReadOnlySpan<double> state)
     {
+        ThrowIfStepping();
         if (state.Length != Dimension)
         {
             throw new ArgumentException(
@@ -350,6 +374,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <exception cref="ArgumentException">The generator is already in this system, or names the particles of another one.</exception>
     public void AddForce(IForceGenerator generator)
     {
+        ThrowIfStepping();
         Guard.NotNull(generator, nameof(generator));
         if (_forceGenerators.Contains(generator))
         {
@@ -365,11 +390,13 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
 
         _forceGenerators.Add(generator);
         _unprojectedStale = true;
+        _structureVersion++;
     }
 
     /// <summary>Removes a force generator; returns false when it was not in the system.</summary>
     public bool RemoveForce(IForceGenerator generator)
     {
+        ThrowIfStepping();
         if (!_forceGenerators.Remove(generator))
         {
             return false;
@@ -378,6 +405,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         _ = _finiteDifference.Remove(generator);
         _linearized.Clear(); // a later product must not reach a removed generator; the next Linearize rebuilds it
         _unprojectedStale = true;
+        _structureVersion++;
         return true;
     }
 
@@ -385,6 +413,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <exception cref="ArgumentException">The set is already in this world.</exception>
     public void AddConstraints(IConstraintSet constraints)
     {
+        ThrowIfStepping();
         Guard.NotNull(constraints, nameof(constraints));
         if (_constraintSets.Contains(constraints))
         {
@@ -403,6 +432,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// <summary>Removes a constraint set; returns false when it was not in the world.</summary>
     public bool RemoveConstraints(IConstraintSet constraints)
     {
+        ThrowIfStepping();
         if (!_constraintSets.Remove(constraints))
         {
             return false;
@@ -422,18 +452,23 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     /// the integrator advances the state under the forces into a scratch buffer; the constraint stage corrects it
     /// (<see cref="IConstraintSet.Resolve"/>, every set in order), except after a position-based integrator
     /// (<see cref="IPositionBasedIntegrator"/>), which has projected every set in its substeps; the result is committed
-    /// only if it is finite and within <see cref="DivergenceLimit"/>. If any stage throws, the world is left exactly as
-    /// it was.
+    /// only if it is finite and its velocities are within <see cref="DivergenceLimit"/>. If any stage throws, the world
+    /// is left exactly as it was, and so is an integrator that carries state (<see cref="IStatefulIntegrator"/>): it is
+    /// told to commit the state of a committed step and to discard that of a failed one, so a retry takes the same step
+    /// as one from a restored snapshot.
     /// </summary>
-    /// <exception cref="ArgumentOutOfRangeException"><paramref name="dt"/> is not a positive finite number.</exception>
+    /// <exception cref="ArgumentOutOfRangeException">
+    /// <paramref name="dt"/> is not a positive finite number, or <see cref="Time"/> + <paramref name="dt"/> is not finite.
+    /// </exception>
     /// <exception cref="SimulationDivergedException">
-    /// The step produced a value that is not finite or beyond <see cref="DivergenceLimit"/>; the system stays at its
-    /// last good state and time.
+    /// The step produced a value that is not finite, or a velocity beyond <see cref="DivergenceLimit"/>; the system
+    /// stays at its last good state and time.
     /// </exception>
     public void Step(IIntegrator integrator, double dt)
     {
         Guard.NotNull(integrator, nameof(integrator));
         Guard.PositiveFinite(dt, nameof(dt));
+        Guard.FiniteEndTime(_time, dt);
         Compact();
         var dimension = 6 * _count;
         if (_next.Length != dimension)
@@ -442,22 +477,140 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         }
 
         var current = _state.AsSpan(0, dimension);
-        integrator.Step(this, _time, current, _next, dt);
-        if (integrator is not IPositionBasedIntegrator)
+        var stateful = integrator as IStatefulIntegrator;
+        var committed = false;
+        var bracket = _frameDepth == 0;
+        if (bracket)
         {
-            ResolveConstraints(current, dt);
+            BeginConstraintSets();
         }
 
-        var bad = DoubleChecks.FirstBeyond(_next, _divergenceLimit);
-        if (bad >= 0)
+        _stepping = true;
+        try
         {
-            throw new SimulationDivergedException(
-                _time + dt, _time, bad, (bad % (3 * _count)) / 3, _next[bad], _divergenceLimit);
+            integrator.Step(this, _time, current, _next, dt);
+            if (integrator is not IPositionBasedIntegrator)
+            {
+                ResolveConstraints(current, dt);
+            }
+
+            _stepping = false;
+            CheckDiverged(dt);
+
+            // Commit by swapping the buffers (the spans handed out before the step are documented as stale after it).
+            (_state, _next) = (_next, _state);
+            _time += dt;
+            committed = true;
+        }
+        finally
+        {
+            _stepping = false;
+
+            // The integrator's own state follows the world's: kept with a committed step, forgotten with a failed one.
+            if (committed)
+            {
+                stateful?.CommitStep();
+            }
+            else
+            {
+                stateful?.DiscardStep();
+            }
+
+            if (bracket)
+            {
+                EndConstraintSets(committed);
+            }
+        }
+    }
+
+    /// <summary>
+    /// Opens one all-or-nothing bracket around several steps (a <see cref="Driver.FixedTimestepDriver"/> frame): the
+    /// stateful constraint sets (<see cref="IStatefulConstraintSet"/>) keep aside what they show now, and the steps
+    /// inside leave them to <see cref="EndFrame"/>.
+    /// </summary>
+    internal void BeginFrame()
+    {
+        if (_frameDepth++ == 0)
+        {
+            BeginConstraintSets();
+        }
+    }
+
+    /// <summary>Closes the bracket of <see cref="BeginFrame"/>: the sets keep the frame's result, or show again what they showed before it.</summary>
+    internal void EndFrame(bool committed)
+    {
+        if (--_frameDepth == 0)
+        {
+            EndConstraintSets(committed);
+        }
+    }
+
+    private void BeginConstraintSets()
+    {
+        for (var c = 0; c < _constraintSets.Count; c++)
+        {
+            (_constraintSets[c] as IStatefulConstraintSet)?.BeginStep();
+        }
+    }
+
+    private void EndConstraintSets(bool committed)
+    {
+        for (var c = 0; c < _constraintSets.Count; c++)
+        {
+            if (_constraintSets[c] is IStatefulConstraintSet set)
+            {
+                if (committed)
+                {
+                    set.CommitStep();
+                }
+                else
+                {
+                    set.DiscardStep();
+                }
+            }
+        }
+    }
+
+    /// <summary>
+    /// The commit's check of the end state in the scratch buffer: every position finite, every velocity component
+    /// within <see cref="DivergenceLimit"/> (one comparison per value; NaN fails it).
+    /// </summary>
+    private void CheckDiverged(double dt)
+    {
+        var n = 3 * _count;
+        var bad = DoubleChecks.FirstBeyond(_next.AsSpan(0, n), double.MaxValue);
+        var velocity = false;
+        if (bad < 0)
+        {
+            bad = DoubleChecks.FirstBeyond(_next.AsSpan(n, n), _divergenceLimit);
+            velocity = bad >= 0;
         }
 
-        // Commit by swapping the buffers (the spans handed out before the step are documented as stale after it).
-        (_state, _next) = (_next, _state);
-        _time += dt;
+        if (bad < 0)
+        {
+            return;
+        }
+
+        var value = velocity ? _next[n + bad] : _next[bad];
+        var particle = bad / 3;
+        var axis = "xyz"[bad % 3];
+        var cause = DoubleChecks.IsFinite(value)
+            ? string.Format(
+                CultureInfo.InvariantCulture,
+                "particle {0} reached v{1} = {2:R} m/s, beyond the divergence limit {3:R} m/s",
+                particle,
+                axis,
+                value,
+                _divergenceLimit)
+            : string.Format(
+                CultureInfo.InvariantCulture,
+                "particle {0}'s {1} {2} is no longer finite ({3})",
+                particle,
+                velocity ? "velocity" : "position",
+                velocity ? "v" + axis : axis.ToString(),
+                value);
+        throw new SimulationDivergedException(
+            _time + dt, _time, velocity ? n + bad : bad, particle, value, _divergenceLimit, cause);
     }
 
     /// <summary>The constraint stage after a force-based step: every set corrects the end state in the scratch buffer.</summary>
@@ -505,12 +658,20 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         }
 
         _ = AccumulateForces(time, positions, velocities);
+        var count = n / 3;
+        if (_forces.Length < n || _inverseMasses.Length < count)
+        {
+            // A generator that added particles while it was evaluated (a step forbids it; a bare Evaluate cannot).
+            throw new InvalidOperationException("The world changed while its forces were being evaluated.");
+        }
+
         unsafe
         {
-            // The accumulator itself, an array (pinning the read-only span AccumulateForces returns would not bind on Mono).
+            // The accumulator itself, an array (pinning the read-only span AccumulateForces returns would not bind on
+            // Mono). The loop runs over the n values checked above, whatever a generator did to the world meanwhile.
             fixed (double* f = _forces, w = _inverseMasses, a = accelerations)
             {
-                for (var i = 0; i < _count; i++)
+                for (var i = 0; i < count; i++)
                 {
                     var o = 3 * i;
                     a[o] = f[o] * w[i];
@@ -571,11 +732,14 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
 
         unsafe
         {
-            // The accumulator and the inverse masses are arrays of at least n and _count values, accelerations n.
+            // The accumulator and the inverse masses are arrays of at least n and n / 3 values, accelerations n. The
+            // bound is n / 3, not _count: a force that added a particle during a bare call (outside a step, where the
+            // world cannot refuse it) would otherwise make the loop write past the accelerations.
+            var count = n / 3;
             fixed (double* f = _forces, w = _inverseMasses, a = accelerations)
             {
                 double* fi = f, ai = a;
-                for (var i = 0; i < _count; i++, fi += 3, ai += 3)
+                for (var i = 0; i < count; i++, fi += 3, ai += 3)
                 {
                     var wi = w[i];
                     ai[0] = fi[0] * wi;
@@ -669,6 +833,15 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         UserForceTreatment userForces,
         Span<double> positionJacobianTimesVelocity)
     {
+        var n = 3 * _count;
+        if (positions.Length != n || velocities.Length != n || positionJacobianTimesVelocity.Length != n)
+        {
+            throw new ArgumentException(
+                $"positions, velocities and positionJacobianTimesVelocity must have {n} values each; got "
+                + $"{positions.Length}, {velocities.Length} and {positionJacobianTimesVelocity.Length}.");
+        }
+
+        _linearizedVersion = -1;
         _linearized.Clear();
         for (var g = 0; g < _forceGenerators.Count; g++)
         {
@@ -694,11 +867,17 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         {
             _linearized[j].Linearize(view, positionScale, velocityScale, positionJacobianTimesVelocity);
         }
+
+        _linearizedVersion = _structureVersion;
     }
 
     /// <inheritdoc />
+    /// <exception cref="InvalidOperationException">
+    /// No Linearize yet, or particles or generators were added or removed since the last one.
+    /// </exception>
     void ILinearizableSystem.AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
     {
+        CheckLinearized(w.Length, result.Length, 3);
         for (var j = 0; j < _linearized.Count; j++)
         {
             _linearized[j].AddJacobianProduct(w, result);
@@ -706,8 +885,12 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     }
 
     /// <inheritdoc />
+    /// <exception cref="InvalidOperationException">
+    /// No Linearize yet, or particles or generators were added or removed since the last one.
+    /// </exception>
     void ILinearizableSystem.AddDiagonalBlocks(Span<double> blocks)
     {
+        CheckLinearized(blocks.Length, blocks.Length, 9);
         for (var j = 0; j < _linearized.Count; j++)
         {
             _linearized[j].AddDiagonalBlocks(blocks);
@@ -828,6 +1011,33 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         for (var i = 0; i < _count; i++)
         {
             destination[i] = new Vector3((float)x[3 * i], (float)x[(3 * i) + 1], (float)x[(3 * i) + 2]);
+        }
+    }
+
+    private void CheckLinearized(int input, int output, int perParticle)
+    {
+        if (_linearizedVersion != _structureVersion)
+        {
+            throw new InvalidOperationException(_linearizedVersion < 0
+                ? "Jacobian products and blocks need a Linearize of the world first."
+                : "Particles or force generators were added or removed since the last Linearize: linearise again.");
+        }
+
+        var needed = perParticle * _count;
+        if (input != needed || output != needed)
+        {
+            throw new ArgumentException($"The buffers must hold {needed} values ({perParticle} per particle); got {input} and {output}.");
+        }
+    }
+
+    /// <summary>Throws when called from inside this world's own step (by a force generator or a constraint set).</summary>
+    internal void ThrowIfStepping()
+    {
+        if (_stepping)
+        {
+            throw new InvalidOperationException(
+                "The world cannot be changed during its own step (by a force generator or a constraint set): "
+                + "a step either commits whole or leaves the world as it was.");
         }
     }
 

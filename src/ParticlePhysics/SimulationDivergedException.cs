@@ -23,6 +23,7 @@ public sealed class SimulationDivergedException : Exception
         double time, double lastFiniteTime, int component, int particle, double value, double limit)
         : base(BuildMessage(time, lastFiniteTime, component, particle, value, limit))
     {
+        _cause = Cause(component, particle, value, limit);
         Time = time;
         LastFiniteTime = lastFiniteTime;
         Component = component;
@@ -30,6 +31,32 @@ public sealed class SimulationDivergedException : Exception
         Value = value;
         Limit = limit;
     }
+
+    /// <summary>
+    /// Creates the exception for a step that failed before it had a state to check: an integrator that met a value
+    /// that is not finite on its way (a force, a right-hand side, a residual).
+    /// </summary>
+    /// <param name="time">The time the failed step was to reach, in seconds.</param>
+    /// <param name="lastFiniteTime">The time of the last finite state, where the system was left.</param>
+    /// <param name="component">The index, in the state vector, of the value the failure concerns.</param>
+    /// <param name="particle">The particle that value belongs to, or -1.</param>
+    /// <param name="value">The offending value.</param>
+    /// <param name="limit">The divergence limit in force.</param>
+    /// <param name="cause">What went wrong, as a clause: "the force on particle 3 is NaN".</param>
+    public SimulationDivergedException(
+        double time, double lastFiniteTime, int component, int particle, double value, double limit, string cause)
+        : base(BuildMessage(time, lastFiniteTime, cause))
+    {
+        _cause = cause;
+        Time = time;
+        LastFiniteTime = lastFiniteTime;
+        Component = component;
+        Particle = particle;
+        Value = value;
+        Limit = limit;
+    }
+
+    private readonly string _cause;
 
     /// <summary>The time the failed step was to reach, in seconds.</summary>
     public double Time { get; }
@@ -49,8 +76,15 @@ public sealed class SimulationDivergedException : Exception
     /// <summary>The divergence limit in force (<see cref="ParticleWorld.DivergenceLimit"/>).</summary>
     public double Limit { get; }
 
+    /// <summary>The same failure, reported by a caller that rolled the system back further, to <paramref name="lastFiniteTime"/>.</summary>
+    internal SimulationDivergedException RewoundTo(double lastFiniteTime) =>
+        new(Time, lastFiniteTime, Component, Particle, Value, Limit, _cause);
+
     private static string BuildMessage(
-        double time, double lastFiniteTime, int component, int particle, double value, double limit)
+        double time, double lastFiniteTime, int component, int particle, double value, double limit) =>
+        BuildMessage(time, lastFiniteTime, Cause(component, particle, value, limit));
+
+    private static string Cause(int component, int particle, double value, double limit)
     {
         var what = particle >= 0
             ? string.Format(CultureInfo.InvariantCulture, "particle {0}", particle)
@@ -58,13 +92,15 @@ public sealed class SimulationDivergedException : Exception
         var how = DoubleChecks.IsFinite(value)
             ? string.Format(CultureInfo.InvariantCulture, "reached {0:R}, beyond the divergence limit {1:R}", value, limit)
             : string.Format(CultureInfo.InvariantCulture, "is no longer finite ({0})", value);
-        return string.Format(
+        return what + " " + how;
+    }
+
+    private static string BuildMessage(double time, double lastFiniteTime, string cause) =>
+        string.Format(
             CultureInfo.InvariantCulture,
-            "The simulation diverged at t={0:R}: {1} {2}. The system was left at its last good state, t={3:R}; "
+            "The simulation diverged at t={0:R}: {1}. The system was left at its last good state, t={2:R}; "
             + "retry with a smaller time step, or with ImplicitEuler (implicit-euler), which stays stable at large steps.",
             time,
-            what,
-            how,
+            cause,
             lastFiniteTime);
-    }
 }

@@ -23,7 +23,7 @@ internal sealed class CommonOptions
             Description = "A self-contained HTML page that replays the run in 3D in a browser (particles, springs, pins; play, pause, time slider, orbiting camera)",
             HelpName = "FILE.html",
         };
-        Tolerance = Options.Number("--tolerance", "rk45's error bound per internal step (relative to 1 + |y|)", string.Empty, 1e-8, NumberRule.Positive);
+        Tolerance = Options.Number("--tolerance", "rk45's error bound per internal step (relative to 1 + |y|)", string.Empty, 1e-8, NumberRule.Tolerance);
         Substeps = scenario.IsPlainOde ? null : SubstepsOption();
     }
 

@@ -2,6 +2,7 @@ using System;
 using System.CommandLine;
 using System.CommandLine.Parsing;
 using System.Globalization;
+using ParticlePhysics.Integrators;
 
 namespace ParticlePhysics.Demo.Cli;
 
@@ -101,6 +102,8 @@ internal static class Options
         var ok = parsed && double.IsFinite(value) && rule switch
         {
             NumberRule.Positive => value > 0,
+            NumberRule.Mass => value > 0 && double.IsFinite(1 / value),
+            NumberRule.Tolerance => value >= DormandPrince45.MinTolerance,
             NumberRule.NonNegative => value >= 0,
             NumberRule.Fraction => value >= 0 && value <= 1,
             _ => true,
@@ -110,6 +113,8 @@ internal static class Options
             var allowed = rule switch
             {
                 NumberRule.Positive => "a positive finite number",
+                NumberRule.Mass => "a positive finite number >= 5.6e-309 (1/m must be finite)",
+                NumberRule.Tolerance => $"a finite number >= {DormandPrince45.MinTolerance.ToString("R", CultureInfo.InvariantCulture)} (100 machine epsilons)",
                 NumberRule.NonNegative => "a finite number >= 0",
                 NumberRule.Fraction => "a number from 0 to 1",
                 _ => "a finite number",

@@ -3,10 +3,19 @@ using System.IO;
 
 namespace ParticlePhysics.Demo.Output;
 
-/// <summary>Writes a chart or a replay page; a path that cannot be written is a usage error naming the option and the path.</summary>
+/// <summary>
+/// A file that an option names (<c>--plot</c>, <c>--animate</c>): checked before the run starts, written after it. A
+/// path that cannot be written is a usage error (exit code 2) naming the option and the path, found before anything
+/// is printed, not after a long run.
+/// </summary>
 internal static class OutputFile
 {
-    /// <summary>Refuses, before a run starts, a path that is not valid, names a folder, or lies in a folder that does not exist.</summary>
+    /// <summary>
+    /// Refuses, before a run starts, a path that cannot be written: one that is not valid, names a folder (<c>/</c>
+    /// included), lies in a folder that does not exist, names a read-only file, or that the system refuses to open
+    /// for writing (no permission, a read-only file system). The last check opens the file as the write will, without
+    /// truncating it, and removes it again if it did not exist.
+    /// </summary>
     /// <param name="option">The option that named the file (<c>--plot</c>, <c>--animate</c>), for the message.</param>
     /// <param name="path">The path given.</param>
     public static void CheckWritable(string option, string path)
@@ -31,6 +40,30 @@ internal static class OutputFile
         {
             throw new UsageException($"{option} cannot write '{path}': the folder '{folder}' does not exist.");
         }
+
+        var existed = File.Exists(full);
+        if (existed && (File.GetAttributes(full) & FileAttributes.ReadOnly) != 0)
+        {
+            throw new UsageException($"{option} cannot write '{path}': the file is read-only.");
+        }
+
+        try
+        {
+            using (new FileStream(full, FileMode.OpenOrCreate, FileAccess.Write, FileShare.ReadWrite | FileShare.Delete))
+            {
+            }
+        }
+        catch (Exception exception) when (exception is IOException or UnauthorizedAccessException or NotSupportedException)
+        {
+            throw new UsageException($"{option} cannot write '{path}': {exception.Message}", exception);
+        }
+        finally
+        {
+            if (!existed)
+            {
+                TryDelete(full);
+            }
+        }
     }
 
     /// <summary>Writes <paramref name="text"/> to <paramref name="path"/>.</summary>
@@ -51,6 +84,18 @@ internal static class OutputFile
         catch (Exception exception) when (exception is IOException or UnauthorizedAccessException or ArgumentException or NotSupportedException)
         {
             throw new UsageException($"{option} cannot write '{path}': {exception.Message}", exception);
+        }
+    }
+
+    private static void TryDelete(string path)
+    {
+        try
+        {
+            File.Delete(path);
+        }
+        catch (Exception exception) when (exception is IOException or UnauthorizedAccessException)
+        {
+            // The probe's empty file stays; the run writes over it.
         }
     }
 }

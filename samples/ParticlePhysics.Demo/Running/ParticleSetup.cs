@@ -17,7 +17,7 @@ internal class ParticleSetup : ScenarioSetup
     private readonly int _count;
     private readonly bool _meshColumns;
     private readonly int _exactAxis;
-    private readonly string[] _columns;
+    private string[]? _columns;
     private readonly IReadOnlyList<ExtraColumn> _extras;
     private readonly Func<IStepObserver>? _observer;
     private double[] _exact = Array.Empty<double>();
@@ -47,7 +47,53 @@ internal class ParticleSetup : ScenarioSetup
         _observer = observer;
         _meshColumns = meshColumns;
         _count = count;
-        var columns = new List<string> { "t" };
+    }
+
+    /// <summary>
+    /// The column names, made on first use (6 per particle: a large cloth's names take more memory than its world, so
+    /// a run says what it costs before they exist).
+    /// </summary>
+    public override IReadOnlyList<string> Columns => _columns ??= ColumnNames();
+
+    /// <summary>The number of columns, without making their names.</summary>
+    public int ColumnCount => 1 + (6 * _count) + (Exact is null ? 0 : (2 * _count) + 1) + 1 + (_meshColumns ? 2 : 0) + _extras.Count;
+
+    /// <summary>
+    /// The bytes the column names take as .NET strings (22 bytes and 2 per character each, in 8-byte units), without
+    /// making them: x{i}, y{i}, z{i} and vx{i}, vy{i}, vz{i} per particle, y{i}_exact and vy{i}_exact with an exact solution.
+    /// </summary>
+    public long ColumnNameBytes()
+    {
+        static long String(long length) => (22 + (2 * length) + 7) & ~7L;
+        long bytes = 0;
+        long first = 0;
+        for (var digits = 1; first < _count; digits++)
+        {
+            // The particles whose index has this many digits: first to min(10 first, count) - 1 (10 when first is 0).
+            var end = Math.Min(_count, first == 0 ? 10 : first * 10);
+            var particles = end - first;
+            bytes += particles * ((3 * String(1 + digits)) + (3 * String(2 + digits)));
+            if (Exact is not null)
+            {
+                bytes += particles * (String(8 + digits) + String(9 + digits));
+            }
+
+            first = end;
+        }
+
+        // t, error, energy, min_y, max_speed (at most 9 characters) and the scenario's extra columns.
+        bytes += 6 * String(9);
+        foreach (var extra in _extras)
+        {
+            bytes += String(extra.Name.Length);
+        }
+
+        return bytes;
+    }
+
+    private string[] ColumnNames()
+    {
+        var columns = new List<string>(ColumnCount) { "t" };
         for (var i = 0; i < _count; i++)
         {
             foreach (var component in new[] { "x", "y", "z", "vx", "vy", "vz" })
@@ -56,9 +102,9 @@ internal class ParticleSetup : ScenarioSetup
             }
         }
 
-        if (exact is not null)
+        if (Exact is not null)
         {
-            var axis = "xyz"[exactAxis];
+            var axis = "xyz"[_exactAxis];
             for (var i = 0; i < _count; i++)
             {
                 columns.Add(Invariant($"{axis}{i}_exact"));
@@ -69,7 +115,7 @@ internal class ParticleSetup : ScenarioSetup
         }
 
         columns.Add("energy");
-        if (meshColumns)
+        if (_meshColumns)
         {
             columns.Add("min_y");
             columns.Add("max_speed");
@@ -80,14 +126,12 @@ internal class ParticleSetup : ScenarioSetup
             columns.Add(extra.Name);
         }
 
-        _columns = columns.ToArray();
+        return columns.ToArray();
     }
 
-    public override IReadOnlyList<string> Columns => _columns;
+    public override IReadOnlyList<string> TableColumns => TableColumnList ?? Columns;
 
-    public override IReadOnlyList<string> TableColumns => TableColumnList ?? _columns;
-
-    public override IReadOnlyList<string> SummaryColumns => SummaryColumnList ?? _columns;
+    public override IReadOnlyList<string> SummaryColumns => SummaryColumnList ?? Columns;
 
     public override IReadOnlyList<(string Column, string? Exact)> PlotSeries => PlotSeriesList;
 

@@ -6,5 +6,8 @@ namespace ParticlePhysics.Demo.Running;
 /// </summary>
 internal sealed record RunOutcome(double[] FinalRow, int FinalStep, double FinalTime, double? FinalError, Divergence? Diverged, bool Interrupted = false);
 
-/// <summary>A step that diverged: the time it was to reach (step * dt) and the core's description.</summary>
-internal sealed record Divergence(int Step, double Time, SimulationDivergedException Exception);
+/// <summary>
+/// A step that failed: the time it was to reach (step * dt) and the core's description, a
+/// <see cref="SimulationDivergedException"/> or (rk45 at a bound of its work) a <see cref="SolverNotConvergedException"/>.
+/// </summary>
+internal sealed record Divergence(int Step, double Time, System.Exception Exception);

@@ -28,7 +28,7 @@ internal static class Runner
         CancellationToken cancellation = default)
     {
         observers ??= Array.Empty<IRunObserver>();
-        var simulation = setup.CreateSimulation();
+        var simulation = setup.TakeSimulation();
         var integrator = IntegratorCatalog.Create(plan.Integrator, plan.Tolerance, plan.Substeps);
         var row = new double[setup.Columns.Count];
         var wanted = new bool[observers.Count];
@@ -93,8 +93,9 @@ internal static class Runner
             {
                 simulation.Step(integrator, plan.Dt);
             }
-            catch (SimulationDivergedException exception)
+            catch (Exception exception) when (exception is SimulationDivergedException or SolverNotConvergedException)
             {
+                // The step failed (diverged, or rk45 hit a bound of its work): the simulation is at its last good state.
                 var good = step - 1;
                 if (lastRowStep != good)
                 {

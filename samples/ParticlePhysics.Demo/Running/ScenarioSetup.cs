@@ -10,6 +10,8 @@ namespace ParticlePhysics.Demo.Running;
 /// </summary>
 internal abstract class ScenarioSetup
 {
+    private ISimulation? _prepared;
+
     protected ScenarioSetup(string name, IExactSolution? exact)
     {
         Name = name;
@@ -73,6 +75,31 @@ internal abstract class ScenarioSetup
 
     /// <summary>Builds a fresh simulation at t = 0.</summary>
     public abstract ISimulation CreateSimulation();
+
+    /// <summary>
+    /// Builds the simulation that the next <see cref="TakeSimulation"/> returns, now: a scenario that cannot be built
+    /// (a cloth whose particles' mass is too small, a size beyond the world's limit) fails before anything is printed.
+    /// </summary>
+    /// <exception cref="UsageException">The core refused to build it.</exception>
+    public void Prepare()
+    {
+        try
+        {
+            _prepared ??= CreateSimulation();
+        }
+        catch (InvalidOperationException exception)
+        {
+            throw new UsageException(exception.Message, exception);
+        }
+    }
+
+    /// <summary>The simulation <see cref="Prepare"/> built, or a fresh one; each simulation is taken once.</summary>
+    public ISimulation TakeSimulation()
+    {
+        var simulation = _prepared ?? CreateSimulation();
+        _prepared = null;
+        return simulation;
+    }
 
     /// <summary>Writes the row of <paramref name="simulation"/> at time <paramref name="time"/> into <paramref name="row"/>.</summary>
     public abstract void FillRow(ISimulation simulation, double time, Span<double> row);

@@ -11,7 +11,7 @@ namespace ParticlePhysics.Demo.Scenarios;
 internal sealed class BouncingBallDefinition : ScenarioDefinition
 {
     private static readonly BouncingBallScenario _defaults = new();
-    private readonly Option<double> _mass = Options.Number("--mass", "Mass m of the ball", "kg", _defaults.Mass, NumberRule.Positive);
+    private readonly Option<double> _mass = Options.Number("--mass", "Mass m of the ball", "kg", _defaults.Mass, NumberRule.Mass);
     private readonly Option<double> _radius = Options.Number("--radius", "Radius R of the ball", "m", _defaults.Radius, NumberRule.NonNegative);
     private readonly Option<double> _height = Options.Number("--height", "Starting height h of its centre (at least R)", "m", _defaults.Height, NumberRule.Finite);
     private readonly Option<double> _vx0 = Options.Number("--vx0", "Starting horizontal velocity", "m/s", _defaults.Vx0, NumberRule.Finite);

@@ -15,7 +15,7 @@ internal sealed class ClothDefinition : ScenarioDefinition
     private static readonly ClothScenario _defaults = new();
     private readonly Option<double> _size = Options.Number("--size", "Side S of the square", "m", _defaults.Size, NumberRule.Positive);
     private readonly Option<double> _resolution = Options.Number("--resolution", "Spacing r between neighbours; S / r must be a whole number", "m", _defaults.Resolution, NumberRule.Positive);
-    private readonly Option<double> _mass = Options.Number("--mass", "Total mass M, split evenly over the particles", "kg", _defaults.Mass, NumberRule.Positive);
+    private readonly Option<double> _mass = Options.Number("--mass", "Total mass M, split evenly over the particles", "kg", _defaults.Mass, NumberRule.Mass);
     private readonly Option<double> _stiffness = Options.Number("--stiffness", "Stiffness k of every spring", "N/m", _defaults.Stiffness, NumberRule.NonNegative);
     private readonly Option<double> _damping = Options.Number("--damping", "Axial damping c of every spring", "N s/m", _defaults.Damping, NumberRule.NonNegative);
     private readonly Option<double> _drag = Options.Number("--drag", "Linear drag lambda on every particle", "N s/m", _defaults.Drag, NumberRule.NonNegative);
@@ -56,6 +56,17 @@ internal sealed class ClothDefinition : ScenarioDefinition
             },
         };
         var n = ParticlesPerSide(scenario);
+        var particleMass = scenario.Mass / ((double)n * n);
+        if (!double.IsFinite(1 / particleMass))
+        {
+            throw new UsageException(string.Format(
+                CultureInfo.InvariantCulture,
+                "--mass {0:R} split over {1} particles gives {2:R} kg each, too small for 1/m to be finite (at least 5.6e-309 kg each).",
+                scenario.Mass,
+                n * n,
+                particleMass));
+        }
+
         return new ClothSetup(Name, scenario.Build, n)
         {
             TableColumnList = new[] { "t", "min_y", "max_speed", "energy" },

@@ -11,8 +11,8 @@ namespace ParticlePhysics.Demo.Scenarios;
 internal sealed class CollisionDefinition : ScenarioDefinition
 {
     private static readonly CollisionScenario _defaults = new();
-    private readonly Option<double> _m1 = Options.Number("--m1", "Mass of particle 0, starting at (-1, 0, 0)", "kg", _defaults.Mass1, NumberRule.Positive);
-    private readonly Option<double> _m2 = Options.Number("--m2", "Mass of particle 1, starting at (1, 0, 0)", "kg", _defaults.Mass2, NumberRule.Positive);
+    private readonly Option<double> _m1 = Options.Number("--m1", "Mass of particle 0, starting at (-1, 0, 0)", "kg", _defaults.Mass1, NumberRule.Mass);
+    private readonly Option<double> _m2 = Options.Number("--m2", "Mass of particle 1, starting at (1, 0, 0)", "kg", _defaults.Mass2, NumberRule.Mass);
     private readonly Option<double> _v1 = Options.Number("--v1", "Velocity of particle 0 along x", "m/s", _defaults.Velocity1, NumberRule.Finite);
     private readonly Option<double> _v2 = Options.Number("--v2", "Velocity of particle 1 along x", "m/s", _defaults.Velocity2, NumberRule.Finite);
     private readonly Option<double> _radius = Options.Number("--radius", "Radius r of both (less than 1)", "m", _defaults.Radius, NumberRule.NonNegative);

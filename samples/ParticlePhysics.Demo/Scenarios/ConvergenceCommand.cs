@@ -42,7 +42,7 @@ internal static class ConvergenceCommand
         var levels = Options.Count("--levels", "How many time steps: dt, dt/2, dt/4, ... (2 to 16)", 2, 4, 16);
         var format = Options.Choice("--format", "Output: aligned table for people, csv or json for programs", OutputFormat.Default, OutputFormat.Names.ToArray());
         var plot = CommonOptions.PlotOption("A chart of the error against dt on log-log axes");
-        var tolerance = Options.Number("--tolerance", "rk45's error bound per internal step, when --integrator rk45", string.Empty, 1e-8, NumberRule.Positive);
+        var tolerance = Options.Number("--tolerance", "rk45's error bound per internal step, when --integrator rk45", string.Empty, 1e-8, NumberRule.Tolerance);
         var substeps = scenario.IsPlainOde ? null : CommonOptions.SubstepsOption();
         foreach (var option in scenario.PhysicsOptions.Concat(new Option[] { integrator, dt, duration, levels, format, plot, tolerance }))
         {

@@ -1,5 +1,7 @@
+using System;
 using System.Collections.Generic;
 using System.CommandLine;
+using System.Globalization;
 using ParticlePhysics.Cloth;
 using ParticlePhysics.Demo.Cli;
 using ParticlePhysics.Demo.Running;
@@ -13,7 +15,7 @@ internal sealed class DrapeDefinition : ScenarioDefinition
     private static readonly DrapeScenario _defaults = new();
     private readonly Option<double> _size = Options.Number("--size", "Side S of the square", "m", _defaults.Cloth.Size, NumberRule.Positive);
     private readonly Option<double> _resolution = Options.Number("--resolution", "Spacing r between neighbours; S / r must be a whole number", "m", _defaults.Cloth.Resolution, NumberRule.Positive);
-    private readonly Option<double> _mass = Options.Number("--mass", "Total mass M, split evenly over the particles", "kg", _defaults.Cloth.Mass, NumberRule.Positive);
+    private readonly Option<double> _mass = Options.Number("--mass", "Total mass M, split evenly over the particles", "kg", _defaults.Cloth.Mass, NumberRule.Mass);
     private readonly Option<double> _stiffness = Options.Number("--stiffness", "Stiffness k of every spring", "N/m", _defaults.Cloth.Stiffness, NumberRule.NonNegative);
     private readonly Option<double> _damping = Options.Number("--damping", "Axial damping c of every spring", "N s/m", _defaults.Cloth.Damping, NumberRule.NonNegative);
     private readonly Option<double> _drag = Options.Number("--drag", "Linear drag lambda on every particle", "N s/m", _defaults.Cloth.Drag, NumberRule.NonNegative);
@@ -64,7 +66,32 @@ internal sealed class DrapeDefinition : ScenarioDefinition
             "corners" => ClothPinning.Corners,
             _ => ClothPinning.None,
         };
-        return new DrapeSetup(Name, scenario, ClothDefinition.ParticlesPerSide(cloth))
+        var n = ClothDefinition.ParticlesPerSide(cloth);
+        var particleMass = cloth.Mass / ((double)n * n);
+        if (!double.IsFinite(1 / particleMass))
+        {
+            throw new UsageException(string.Format(
+                CultureInfo.InvariantCulture,
+                "--mass {0:R} split over {1} particles gives {2:R} kg each, too small for 1/m to be finite (at least 5.6e-309 kg each).",
+                cloth.Mass,
+                n * n,
+                particleMass));
+        }
+
+        // The cloth starts flat at y = 0 over the sphere's centre: within R + r of it, its middle starts inside the sphere.
+        if (Math.Abs(scenario.SphereY) < scenario.SphereRadius + scenario.Radius)
+        {
+            throw new UsageException(string.Format(
+                CultureInfo.InvariantCulture,
+                "--sphere-y {0:R} puts the sphere of --sphere-radius {1:R} within reach of the cloth at y = 0 (particles of --radius {2:R}): "
+                + "the cloth would start inside it; |sphere-y| must be at least {3:R}.",
+                scenario.SphereY,
+                scenario.SphereRadius,
+                scenario.Radius,
+                scenario.SphereRadius + scenario.Radius));
+        }
+
+        return new DrapeSetup(Name, scenario, n)
         {
             TableColumnList = new[] { "t", "min_y", "max_speed", "sphere_gap", "middle_y", "energy" },
             SummaryColumnList = new[] { "min_y", "max_speed", "sphere_gap", "middle_y" },

@@ -10,7 +10,7 @@ namespace ParticlePhysics.Demo.Scenarios;
 internal sealed class FreeFallDefinition : ScenarioDefinition
 {
     private static readonly FreeFallScenario _defaults = new();
-    private readonly Option<double> _mass = Options.Number("--mass", "Mass m of the particle", "kg", _defaults.Mass, NumberRule.Positive);
+    private readonly Option<double> _mass = Options.Number("--mass", "Mass m of the particle", "kg", _defaults.Mass, NumberRule.Mass);
     private readonly Option<double> _drag = Options.Number("--drag", "Linear drag lambda (force -lambda v)", "N s/m", _defaults.Drag, NumberRule.NonNegative);
     private readonly Option<double> _height = Options.Number("--height", "Starting height h", "m", _defaults.Height, NumberRule.Finite);
     private readonly Option<double> _gravity = Options.Gravity(_defaults.Gravity);

@@ -14,7 +14,7 @@ internal sealed class HangingChainDefinition : ScenarioDefinition
     private readonly Option<int?> _particles = ParticlesOption();
     private readonly Option<double> _length = Options.Number("--length", "Length L of the chain", "m", _defaults.Length, NumberRule.Positive);
     private readonly Option<double> _span = Options.Number("--span", "Span D between the pins, less than L", "m", _defaults.Span, NumberRule.Positive);
-    private readonly Option<double> _mass = Options.Number("--mass", "Total mass M, split evenly over the particles", "kg", _defaults.Mass, NumberRule.Positive);
+    private readonly Option<double> _mass = Options.Number("--mass", "Total mass M, split evenly over the particles", "kg", _defaults.Mass, NumberRule.Mass);
     private readonly Option<double> _drag = Options.Number("--drag", "Linear drag lambda on every particle", "N s/m", _defaults.Drag, NumberRule.NonNegative);
     private readonly Option<double> _gravity = Options.Gravity(_defaults.Gravity);
 

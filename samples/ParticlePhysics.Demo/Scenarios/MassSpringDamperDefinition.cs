@@ -10,7 +10,7 @@ namespace ParticlePhysics.Demo.Scenarios;
 internal sealed class MassSpringDamperDefinition : ScenarioDefinition
 {
     private static readonly MassSpringDamperScenario _defaults = new();
-    private readonly Option<double> _mass = Options.Number("--mass", "Mass m", "kg", _defaults.Mass, NumberRule.Positive);
+    private readonly Option<double> _mass = Options.Number("--mass", "Mass m", "kg", _defaults.Mass, NumberRule.Mass);
     private readonly Option<double> _stiffness = Options.Number("--stiffness", "Spring stiffness k", "N/m", _defaults.Stiffness, NumberRule.NonNegative);
     private readonly Option<double> _damping = Options.Number("--damping", "Linear drag c on the mass", "N s/m", _defaults.Damping, NumberRule.NonNegative);
     private readonly Option<double> _y0 = Options.Number("--y0", "Starting height y0", "m", _defaults.Y0, NumberRule.Finite);

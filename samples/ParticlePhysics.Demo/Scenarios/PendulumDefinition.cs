@@ -14,7 +14,7 @@ namespace ParticlePhysics.Demo.Scenarios;
 internal sealed class PendulumDefinition : ScenarioDefinition
 {
     private static readonly PendulumScenario _defaults = new();
-    private readonly Option<double> _mass = Options.Number("--mass", "Mass m of the bob", "kg", _defaults.Mass, NumberRule.Positive);
+    private readonly Option<double> _mass = Options.Number("--mass", "Mass m of the bob", "kg", _defaults.Mass, NumberRule.Mass);
     private readonly Option<double> _length = Options.Number("--length", "Length L of the rod", "m", _defaults.Length, NumberRule.Positive);
     private readonly Option<double> _angle = Options.Number("--angle", "Starting angle theta0 from the downward vertical, between 0 and 180 exclusive", "degrees", _defaults.Angle, NumberRule.Finite);
     private readonly Option<double> _drag = Options.Number("--drag", "Linear drag lambda on the bob (the exact solution needs 0)", "N s/m", _defaults.Drag, NumberRule.NonNegative);

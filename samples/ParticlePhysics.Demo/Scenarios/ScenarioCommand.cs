@@ -64,6 +64,14 @@ internal static class ScenarioCommand
             OutputFile.CheckWritable("--animate", animatePath);
         }
 
+        // Before anything is printed: a long or large run says what it will cost, and the world is built (a scenario
+        // the core refuses is a bad command line, exit code 2, not a failure halfway through the output).
+        if (RunCost.For(setup, plan) is { IsWorthSaying: true } cost)
+        {
+            context.Error.WriteLine(cost.Note(scenario.Name, plan));
+        }
+
+        setup.Prepare();
         var plot = plotPath is null ? null : RunPlots.For(setup, plan);
         var recorder = animatePath is null ? null : new ReplayRecorder(particles!, plan);
         var observers = new List<IRunObserver>();

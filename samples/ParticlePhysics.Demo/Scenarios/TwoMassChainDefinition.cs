@@ -10,8 +10,8 @@ namespace ParticlePhysics.Demo.Scenarios;
 internal sealed class TwoMassChainDefinition : ScenarioDefinition
 {
     private static readonly TwoMassChainScenario _defaults = new();
-    private readonly Option<double> _m1 = Options.Number("--m1", "Mass m1 of particle 1", "kg", _defaults.M1, NumberRule.Positive);
-    private readonly Option<double> _m2 = Options.Number("--m2", "Mass m2 of particle 2", "kg", _defaults.M2, NumberRule.Positive);
+    private readonly Option<double> _m1 = Options.Number("--m1", "Mass m1 of particle 1", "kg", _defaults.M1, NumberRule.Mass);
+    private readonly Option<double> _m2 = Options.Number("--m2", "Mass m2 of particle 2", "kg", _defaults.M2, NumberRule.Mass);
     private readonly Option<double> _k1 = Options.Number("--k1", "Stiffness k1 of spring 1 (anchor to particle 1)", "N/m", _defaults.K1, NumberRule.NonNegative);
     private readonly Option<double> _k2 = Options.Number("--k2", "Stiffness k2 of spring 2 (particle 1 to particle 2)", "N/m", _defaults.K2, NumberRule.NonNegative);
     private readonly Option<double> _c1 = Options.Number("--c1", "Linear drag c1 on particle 1", "N s/m", _defaults.C1, NumberRule.NonNegative);

@@ -2,6 +2,7 @@ using System;
 using System.Collections.Generic;
 using ParticlePhysics.Constraints;
 using ParticlePhysics.Forces;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Cloth;
 
@@ -26,6 +27,7 @@ public sealed class ClothBuilder
     public const int MaxSide = 2048;
 
     private readonly List<int> _pins = new();
+    private ClothPinning _pinning = ClothPinning.Corners;
     private int _rows = 11, _columns = 11;
     private double _spacing = 0.1, _mass = 1, _drag = 0.01, _gravity = Forces.Gravity.StandardAcceleration;
     private Vector3d _origin;
@@ -108,7 +110,15 @@ public sealed class ClothBuilder
     }
 
     /// <summary>The pins of a preset (default: the two corners of row 0); <see cref="Pin(int)"/> adds more.</summary>
-    public ClothPinning Pinning { get; set; } = ClothPinning.Corners;
+    public ClothPinning Pinning
+    {
+        get => _pinning;
+        set
+        {
+            CheckPinning(value);
+            _pinning = value;
+        }
+    }
 
     /// <summary>The structural springs, to the right and down neighbours (default k = 50 N/m, c = 0.05 N s/m).</summary>
     public ClothSpringFamily Structural { get; } = new(50, 0.05);
@@ -193,9 +203,10 @@ public sealed class ClothBuilder
     /// Builds the cloth alone in a new particle system: its particles, one spring network, linear drag and gravity,
     /// added in that order.
     /// </summary>
+    /// <exception cref="InvalidOperationException">A setting that no cloth can have (see <see cref="AddTo"/>).</exception>
     public ParticleCloth Build()
     {
-        Validate();
+        Validate(0);
         var system = new ParticleWorld(ParticleCount);
         var springs = AddParticlesAndSprings(system, 0);
         var drag = new LinearDrag(_drag);
@@ -212,11 +223,17 @@ public sealed class ClothBuilder
     /// Adds the cloth to a system that may hold other bodies: its particles after the existing ones, its spring
     /// network, and linear drag on its own particles. No gravity is added: the system's own gravity, if any, acts on
     /// the cloth (add one <see cref="Forces.Gravity"/> per system).
+    /// Everything is checked before anything is added: a rejected call leaves <paramref name="system"/> as it was.
     /// </summary>
+    /// <exception cref="InvalidOperationException">
+    /// A pin outside the grid, a particle mass (<see cref="TotalMass"/> / <see cref="ParticleCount"/>) too small to
+    /// have a finite inverse, a spacing that puts a particle or a rest length beyond the finite numbers, or more
+    /// particles than the world can take.
+    /// </exception>
     public ParticleCloth AddTo(ParticleWorld system)
     {
         Guard.NotNull(system, nameof(system));
-        Validate();
+        Validate(system.Count);
         var first = system.Count;
         var springs = AddParticlesAndSprings(system, first);
         var particles = new int[ParticleCount];
@@ -241,8 +258,19 @@ public sealed class ClothBuilder
         }
     }
 
-    private void Validate()
+    private static void CheckPinning(ClothPinning value)
     {
+        if (value is not (ClothPinning.Corners or ClothPinning.Edge or ClothPinning.None))
+        {
+            throw new ArgumentOutOfRangeException(
+                nameof(Pinning), value, $"Pinning must be Corners, Edge or None; got {(int)value}.");
+        }
+    }
+
+    /// <summary>Everything that could make adding the cloth fail halfway, checked before anything is added.</summary>
+    private void Validate(int existingParticles)
+    {
+        CheckPinning(_pinning);
         foreach (var pin in _pins)
         {
             if (pin >= ParticleCount)
@@ -250,6 +278,36 @@ public sealed class ClothBuilder
                 throw new InvalidOperationException(
                     $"Pin {pin} lies outside the {_rows} x {_columns} cloth (the grid shrank after it was pinned).");
             }
+        }
+
+        if (existingParticles > ParticleWorld.MaxParticles - ParticleCount)
+        {
+            throw new InvalidOperationException(
+                $"The world holds {existingParticles} particles; {ParticleCount} more would pass its limit of {ParticleWorld.MaxParticles}.");
+        }
+
+        var particleMass = _mass / ParticleCount;
+        try
+        {
+            Guard.Mass(particleMass, "particle mass");
+        }
+        catch (ArgumentOutOfRangeException e)
+        {
+            throw new InvalidOperationException(
+                $"TotalMass {Guard.Format(_mass)} kg split over {ParticleCount} particles gives {Guard.Format(particleMass)} kg "
+                + $"each, below the smallest mass with a finite inverse ({Guard.Format(Guard.SmallestMass)} kg).",
+                e);
+        }
+
+        // The farthest particle (computed as AddParticlesAndSprings computes it) and every rest length must be finite:
+        // r sqrt(2) of the shear springs can overflow on a 2 x 2 cloth whose corners are still finite (2 r of the bend
+        // springs cannot: a side long enough for them has a particle at 2 r from the origin).
+        var far = new Vector3d(_origin.X + ((_columns - 1) * _spacing), _origin.Y, _origin.Z + ((_rows - 1) * _spacing));
+        if (!far.IsFinite || !DoubleChecks.IsFinite(_spacing * Math.Sqrt(2)))
+        {
+            throw new InvalidOperationException(
+                $"Spacing {Guard.Format(_spacing)} m from Origin {_origin} puts the far corner of the {_rows} x {_columns} "
+                + $"cloth at {far}, or a shear spring's rest length r sqrt(2) beyond the finite numbers.");
         }
     }
 
@@ -266,7 +324,7 @@ public sealed class ClothBuilder
             }
         }
 
-        switch (Pinning)
+        switch (_pinning)
         {
             case ClothPinning.Corners:
                 system.Pin(first);

@@ -99,6 +99,21 @@ public sealed class KinematicBody
             }
         }
 
+        // Every target first, so that a pose that would take one particle beyond the finite numbers changes nothing.
+        for (var a = 0; a < _particles.Count; a++)
+        {
+            var target = position + orientation.Rotate(_offsets[a]);
+            if (!target.IsFinite)
+            {
+                throw new ArgumentOutOfRangeException(
+                    nameof(position),
+                    position,
+                    $"This pose would take particle {_particles[a]} (offset {_offsets[a]} in the body) to {target}: every "
+                    + "attached particle's target must be finite.");
+            }
+        }
+
+        _world.ThrowIfStepping();
         Position = position;
         Orientation = orientation;
         for (var a = 0; a < _particles.Count; a++)

@@ -36,7 +36,7 @@ namespace ParticlePhysics.Constraints;
 /// change of positions then carry the inelastic impact of a cable going taut.
 /// </para>
 /// </remarks>
-public sealed class RodNetwork : IConstraintSet, IConstraintForces
+public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
 {
     /// <summary>The largest half-bandwidth of J W J^T solved by the direct band factorisation; wider ones use conjugate gradients.</summary>
     public const int MaxDirectBandwidth = 16;
@@ -82,6 +82,8 @@ public sealed class RodNetwork : IConstraintSet, IConstraintForces
     private double[] _rhs = Array.Empty<double>();
     private double[] _lambda = Array.Empty<double>();
     private double[] _tension = Array.Empty<double>();
+    private double[] _savedTension = Array.Empty<double>(); // the tensions as they were before a step (BeginStep)
+    private int _savedTensionCount;
     private bool[] _active = Array.Empty<bool>();
     private double[] _band = Array.Empty<double>();
     private double[] _residual = Array.Empty<double>();
@@ -197,6 +199,36 @@ public sealed class RodNetwork : IConstraintSet, IConstraintForces
     {
         CheckLink(link);
         return link < _tension.Length ? _tension[link] : 0.0;
+    }
+
+    /// <inheritdoc />
+    /// <remarks>Keeps the tensions aside (<see cref="GetTension"/> is the last evaluation's, which a failed step ran).</remarks>
+    public void BeginStep()
+    {
+        if (_savedTension.Length < _tension.Length)
+        {
+            _savedTension = new double[_tension.Length];
+        }
+
+        _savedTensionCount = _tension.Length;
+        _tension.AsSpan().CopyTo(_savedTension);
+    }
+
+    /// <inheritdoc />
+    public void CommitStep()
+    {
+    }
+
+    /// <inheritdoc />
+    /// <remarks>
+    /// The tensions are those before the step again; links that the step's first evaluation sized for show 0, as
+    /// they did before any evaluation.
+    /// </remarks>
+    public void DiscardStep()
+    {
+        var kept = Math.Min(_savedTensionCount, _tension.Length);
+        _savedTension.AsSpan(0, kept).CopyTo(_tension);
+        _tension.AsSpan(kept).Clear();
     }
 
     /// <summary>
@@ -466,7 +498,8 @@ public sealed class RodNetwork : IConstraintSet, IConstraintForces
         }
 
         Guard.Finite(anchor, nameof(anchor));
-        Guard.PositiveFinite(length, nameof(length));
+        Guard.PositiveWithFiniteInverse(length, nameof(length), "m"); // the solve divides by it
+        _world.ThrowIfStepping();
         if (_count == _first.Length)
         {
             var capacity = Math.Max(4, 2 * _count);
@@ -853,7 +886,12 @@ public sealed class RodNetwork : IConstraintSet, IConstraintForces
         _gradient = new double[3 * n];
         _rhs = new double[n];
         _lambda = new double[n];
-        _tension = new double[n];
+
+        // The tensions of the links there were stay what the last evaluation found (a rebuild because particles were
+        // added, or links, changes none of them); new links read 0 until evaluated.
+        var tension = new double[n];
+        _tension.AsSpan(0, Math.Min(_tension.Length, n)).CopyTo(tension);
+        _tension = tension;
         _active = new bool[n];
         if (bandwidth <= MaxDirectBandwidth)
         {

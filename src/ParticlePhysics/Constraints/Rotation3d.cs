@@ -13,10 +13,20 @@ public readonly struct Rotation3d : IEquatable<Rotation3d>
     public Rotation3d(double x, double y, double z, double w)
     {
         var norm = Math.Sqrt((x * x) + (y * y) + (z * z) + (w * w));
-        if (!(norm > 0.0) || double.IsInfinity(norm) || double.IsNaN(norm))
+        if (!(norm >= 1e-150) || double.IsInfinity(norm))
         {
-            throw new ArgumentException(
-                $"A rotation needs finite quaternion components, not all zero; got ({x}, {y}, {z}, {w}).");
+            // Finite components whose squares overflow or underflow (1e200, 1e-200) are a rotation too: scale by the
+            // largest first. A norm of ordinary size is divided by directly, bit for bit as before.
+            var scale = Math.Max(Math.Max(Math.Abs(x), Math.Abs(y)), Math.Max(Math.Abs(z), Math.Abs(w)));
+            if (!(scale > 0.0) || double.IsInfinity(scale) || double.IsNaN(x + y + z + w))
+            {
+                throw new ArgumentException(
+                    $"A rotation needs finite quaternion components, not all zero; got ({Guard.Format(x)}, {Guard.Format(y)}, "
+                    + $"{Guard.Format(z)}, {Guard.Format(w)}).");
+            }
+
+            (x, y, z, w) = (x / scale, y / scale, z / scale, w / scale);
+            norm = Math.Sqrt((x * x) + (y * y) + (z * z) + (w * w));
         }
 
         X = x / norm;
@@ -44,9 +54,17 @@ public readonly struct Rotation3d : IEquatable<Rotation3d>
     public static Rotation3d FromAxisAngle(Vector3d axis, double angle)
     {
         var length = axis.Length;
-        if (!(length > 0.0) || !axis.IsFinite || double.IsNaN(angle) || double.IsInfinity(angle))
+        if (!axis.IsFinite || (axis.X == 0.0 && axis.Y == 0.0 && axis.Z == 0.0) || double.IsNaN(angle) || double.IsInfinity(angle))
         {
-            throw new ArgumentException($"The axis must be finite and not zero, and the angle finite; got {axis} and {angle}.");
+            throw new ArgumentException(
+                $"The axis must be finite and not zero, and the angle finite; got {axis} and {Guard.Format(angle)}.");
+        }
+
+        if (!(length >= 1e-150) || double.IsInfinity(length))
+        {
+            // An axis whose length overflows or underflows (1e300, 1e-200): its direction, from the scaled vector.
+            axis = Guard.Direction(axis, nameof(axis));
+            length = 1.0;
         }
 
         var s = Math.Sin(0.5 * angle) / length;

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Contacts;
 
@@ -22,8 +23,11 @@ public sealed class CapsuleObstacle : Obstacle
     public CapsuleObstacle(Vector3d start, Vector3d end, double radius, double restitution = 0.0, double friction = 0.0)
         : base(restitution, friction)
     {
-        Start = start;
-        End = end;
+        Guard.Finite(start, nameof(Start));
+        Guard.Finite(end, nameof(End));
+        CheckSegment(start, end, nameof(End));
+        _start = start;
+        _end = end;
         Radius = radius;
     }
 
@@ -34,6 +38,7 @@ public sealed class CapsuleObstacle : Obstacle
         set
         {
             Guard.Finite(value, nameof(Start));
+            CheckSegment(value, _end, nameof(Start));
             _start = value;
         }
     }
@@ -45,6 +50,7 @@ public sealed class CapsuleObstacle : Obstacle
         set
         {
             Guard.Finite(value, nameof(End));
+            CheckSegment(_start, value, nameof(End));
             _end = value;
         }
     }
@@ -67,8 +73,23 @@ public sealed class CapsuleObstacle : Obstacle
         var end = _end + offset;
         Guard.Finite(start, nameof(offset));
         Guard.Finite(end, nameof(offset));
+        CheckSegment(start, end, nameof(offset));
         _start = start;
         _end = end;
+    }
+
+    /// <summary>The segment's squared length is what the distance divides by: it must be finite (ends less than about 1e154 m apart).</summary>
+    private static void CheckSegment(Vector3d start, Vector3d end, string name)
+    {
+        var axis = end - start;
+        if (!DoubleChecks.IsFinite(axis.LengthSquared))
+        {
+            throw new ArgumentOutOfRangeException(
+                name,
+                name == nameof(Start) ? start : end,
+                $"The capsule's segment from {start} to {end} is too long: its squared length must be finite (ends less "
+                + "than about 1e154 m apart).");
+        }
     }
 
     private protected override ObstacleShape Describe(Vector3d offset)

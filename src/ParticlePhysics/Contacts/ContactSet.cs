@@ -33,7 +33,7 @@ namespace ParticlePhysics.Contacts;
 /// A step allocates nothing once the buffers have grown to the particle and pair counts.
 /// </para>
 /// </remarks>
-public sealed partial class ContactSet : IConstraintSet
+public sealed partial class ContactSet : IStatefulConstraintSet
 {
     /// <summary>The most obstacles one set holds (each resting particle keeps the ones it rests on as bits of a mask).</summary>
     public const int MaxObstacles = 64;
@@ -50,6 +50,9 @@ public sealed partial class ContactSet : IConstraintSet
     private readonly SpatialHashGrid _sweptGrid = new();
     private readonly SpatialHashGrid _restingGrid = new();
     private readonly ContactImpact[] _impacts = new ContactImpact[MaxRecordedImpacts];
+    private ContactImpact[] _savedImpacts = Array.Empty<ContactImpact>(); // the log as it was before a step (BeginStep)
+    private int _savedImpactCount;
+    private int _savedPairCount;
     private double _restingSpeed = DefaultRestingSpeed;
     private double _particleRestitution;
     private double _particleFriction;
@@ -162,6 +165,34 @@ public sealed partial class ContactSet : IConstraintSet
 
     /// <summary>The number of particle pairs the broad phase gave the last step.</summary>
     public int CandidatePairCount => _pairCount;
+
+    /// <inheritdoc />
+    /// <remarks>Keeps the impact log aside (a copy of the impacts it holds, allocated once).</remarks>
+    public void BeginStep()
+    {
+        if (_savedImpacts.Length == 0)
+        {
+            _savedImpacts = new ContactImpact[MaxRecordedImpacts];
+        }
+
+        _savedImpactCount = _impactCount;
+        _savedPairCount = _pairCount;
+        Impacts.CopyTo(_savedImpacts);
+    }
+
+    /// <inheritdoc />
+    public void CommitStep()
+    {
+    }
+
+    /// <inheritdoc />
+    /// <remarks>The impact log, its count and the candidate pairs' count are those of the last committed step again.</remarks>
+    public void DiscardStep()
+    {
+        _impactCount = _savedImpactCount;
+        _pairCount = _savedPairCount;
+        _savedImpacts.AsSpan(0, Math.Min(_impactCount, MaxRecordedImpacts)).CopyTo(_impacts);
+    }
 
     /// <summary>Adds an obstacle; it acts from the next step on.</summary>
     /// <exception cref="ArgumentException">It is already in the set, or the set holds <see cref="MaxObstacles"/>.</exception>

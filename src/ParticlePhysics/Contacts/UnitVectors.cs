@@ -5,17 +5,8 @@ namespace ParticlePhysics.Contacts;
 /// <summary>Unit vectors for the obstacles' parameters.</summary>
 internal static class UnitVectors
 {
-    /// <summary><paramref name="value"/> / |value|; throws for a zero or non-finite vector.</summary>
-    public static Vector3d Normalized(Vector3d value, string name)
-    {
-        var length = value.Length;
-        if (!value.IsFinite || !(length > 0.0) || double.IsInfinity(length))
-        {
-            throw new ArgumentOutOfRangeException(name, value, $"{name} must be a finite non-zero vector; got {value}.");
-        }
-
-        return value / length;
-    }
+    /// <summary><paramref name="value"/> / |value| (also when |value| overflows or underflows); throws for a zero or non-finite vector.</summary>
+    public static Vector3d Normalized(Vector3d value, string name) => Guard.Direction(value, name);
 
     /// <summary>Two unit vectors that make (t, n, b) a right-handed orthonormal frame with unit <paramref name="n"/>.</summary>
     public static void Tangents(Vector3d n, out Vector3d t, out Vector3d b)

@@ -18,15 +18,25 @@ namespace ParticlePhysics.Driver;
 /// <see cref="MaxStepsPerFrame"/> steps (after a pause or a hitch) runs that many and drops the rest of the whole
 /// steps (<see cref="LastDroppedTime"/>): the simulation falls behind the wall clock instead of freezing the game in a
 /// spiral of ever longer frames. Nothing here allocates once constructed.
+/// All or nothing: a frame whose steps do not all succeed (a step diverges, a force throws, a solver gives up) leaves
+/// the world (state and time), the integrator's state, the accumulator, the interpolation and the counters exactly as
+/// they were before the call, and rethrows. For that, a frame of two or more integrator steps first copies the state
+/// (and the integrator's state) aside, one copy of 6 doubles per particle: a frame of one step needs no copy, since
+/// <see cref="ParticleWorld.Step"/> is all or nothing itself.
 /// </remarks>
 public sealed class FixedTimestepDriver
 {
     /// <summary>The default <see cref="MaxStepsPerFrame"/>: 8, a quarter second of steps at 30 Hz, 0.13 s at 60 Hz.</summary>
     public const int DefaultMaxStepsPerFrame = 8;
 
-    private readonly double[] _previous;
     private readonly double _subStep;
+    private double[] _previous;
+    private double[] _pendingPrevious;
     private double _accumulator;
+
+    // The frame's starting point, restored if any of its steps fails.
+    private readonly double[] _frameState;
+    private double[] _frameIntegratorState = Array.Empty<double>();
 
     /// <summary>Creates a driver.</summary>
     /// <param name="system">The system to advance; its particle count must not change while this driver runs it.</param>
@@ -66,6 +76,14 @@ public sealed class FixedTimestepDriver
         MaxStepsPerFrame = maxStepsPerFrame;
         _subStep = fixedTimeStep / subSteps;
         _previous = new double[system.CoordinateCount];
+        _pendingPrevious = new double[system.CoordinateCount];
+        _frameState = new double[system.Dimension];
+
+        // Room for the integrator's state up front, so that no frame allocates: implicit Euler's grows to 1 + 6 values
+        // per particle over its first steps; 1024 + 6 per particle is what a snapshot admits of any integrator.
+        _frameIntegratorState = integrator is IStatefulIntegrator stateful
+            ? new double[Math.Max(stateful.StateLength, 1024 + (6 * system.Count))]
+            : Array.Empty<double>();
         system.Positions.CopyTo(_previous);
     }
 
@@ -109,9 +127,11 @@ public sealed class FixedTimestepDriver
     /// <returns>The number of fixed steps run.</returns>
     /// <exception cref="ArgumentOutOfRangeException"><paramref name="frameTime"/> is negative, NaN or infinite.</exception>
     /// <exception cref="SimulationDivergedException">
-    /// A step diverged: the system stays at its last good state (with sub-steps, that of the last good sub-step), and
-    /// the accumulator keeps the time of the fixed steps not completed. Retry with more sub-steps or another integrator.
+    /// A step diverged. Nothing of the frame is kept: the world, the integrator, the accumulator and the interpolation
+    /// are as they were before the call, and the exception's <see cref="SimulationDivergedException.LastFiniteTime"/>
+    /// is the time the frame started from. Retry with more sub-steps or another integrator (a new driver).
     /// </exception>
+    /// <remarks>Any other exception from a step (a force that throws, a solver that gives up) leaves everything as it was too.</remarks>
     public int Advance(double frameTime)
     {
         Guard.NonNegativeFinite(frameTime, nameof(frameTime));
@@ -122,34 +142,105 @@ public sealed class FixedTimestepDriver
                 + "create a new driver after adding particles.");
         }
 
-        LastDroppedTime = 0.0;
-        _accumulator += frameTime;
+        // The frame's arithmetic on a copy of the accumulator: nothing is kept unless every step succeeds.
+        var accumulator = _accumulator + frameTime;
         var dt = FixedTimeStep;
         var steps = 0;
-        while (_accumulator >= dt && steps < MaxStepsPerFrame)
+        while (accumulator >= dt && steps < MaxStepsPerFrame)
         {
-            System.Positions.CopyTo(_previous);
-            for (var s = 0; s < SubSteps; s++)
-            {
-                System.Step(Integrator, _subStep);
-            }
-
-            _accumulator -= dt;
+            accumulator -= dt;
             steps++;
-            StepCount++;
         }
 
-        if (_accumulator >= dt)
+        if (steps > 0)
+        {
+            RunSteps(steps);
+        }
+
+        var dropped = 0.0;
+        if (accumulator >= dt)
         {
             // Drop the whole steps and keep the fraction of a step, so that the interpolation stays smooth.
             // % on doubles is fmod: exact, and in [0, dt) for a positive accumulator.
-            var remainder = _accumulator % dt;
-            LastDroppedTime = _accumulator - remainder;
-            TotalDroppedTime += LastDroppedTime;
-            _accumulator = remainder;
+            var remainder = accumulator % dt;
+            dropped = accumulator - remainder;
+            accumulator = remainder;
         }
 
+        _accumulator = accumulator;
+        StepCount += steps;
+        LastDroppedTime = dropped;
+        TotalDroppedTime += dropped;
         return steps;
+    }
+
+    /// <summary>Runs <paramref name="steps"/> fixed steps, all of them or, if one fails, none.</summary>
+    private void RunSteps(int steps)
+    {
+        var stateful = Integrator as IStatefulIntegrator;
+        var checkpoint = (steps * (long)SubSteps) > 1;
+        var startTime = System.Time;
+        var integratorStateLength = 0;
+        if (checkpoint)
+        {
+            // One step of the world is all or nothing by itself; more need the frame's start kept aside.
+            System.State.CopyTo(_frameState);
+            if (stateful is not null)
+            {
+                integratorStateLength = stateful.StateLength;
+                if (_frameIntegratorState.Length < integratorStateLength)
+                {
+                    _frameIntegratorState = new double[integratorStateLength];
+                }
+
+                stateful.WriteState(_frameIntegratorState.AsSpan(0, integratorStateLength));
+            }
+        }
+
+        // The constraint sets' logs (impacts, tensions) follow the frame as one bracket: restored with the state.
+        if (checkpoint)
+        {
+            System.BeginFrame();
+        }
+
+        try
+        {
+            for (var step = 0; step < steps; step++)
+            {
+                System.Positions.CopyTo(_pendingPrevious);
+                for (var s = 0; s < SubSteps; s++)
+                {
+                    System.Step(Integrator, _subStep);
+                }
+            }
+        }
+        catch (SimulationDivergedException diverged) when (checkpoint)
+        {
+            Rewind(stateful, startTime, integratorStateLength);
+            System.EndFrame(committed: false);
+            throw diverged.RewoundTo(startTime);
+        }
+        catch when (checkpoint)
+        {
+            Rewind(stateful, startTime, integratorStateLength);
+            System.EndFrame(committed: false);
+            throw;
+        }
+
+        if (checkpoint)
+        {
+            System.EndFrame(committed: true);
+        }
+
+        // The positions before the frame's last fixed step are the interpolation's start.
+        (_previous, _pendingPrevious) = (_pendingPrevious, _previous);
+    }
+
+    private void Rewind(IStatefulIntegrator? stateful, double startTime, int integratorStateLength)
+    {
+        System.SetState(_frameState);
+        System.Time = startTime;
+        stateful?.ReadState(_frameIntegratorState.AsSpan(0, integratorStateLength));
     }
 
     /// <summary>

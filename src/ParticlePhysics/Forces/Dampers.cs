@@ -12,6 +12,7 @@ public sealed class Dampers : IForceGenerator, IBoundForce, IJacobianCouplings
     private readonly ForceElements _pairs = new(1);
     private readonly ParticleWorld _system;
     private double _velocityScale;
+    private LinearizationStamp _linearized;
 
     /// <summary>An empty set of dampers for the particles of <paramref name="system"/>.</summary>
     public Dampers(ParticleWorld system)
@@ -57,15 +58,22 @@ public sealed class Dampers : IForceGenerator, IBoundForce, IJacobianCouplings
         in ParticleState state, double positionScale, double velocityScale, Span<double> positionJacobianTimesVelocity)
     {
         _velocityScale = velocityScale;
+        _linearized.Record(_pairs.Count, 0);
     }
 
     /// <inheritdoc />
-    public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result) =>
+    public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
+    {
+        _linearized.Check(nameof(Dampers), _pairs.Count, 0);
         LinearPairTerms.AddScaledDifferences(_pairs, w, result, _velocityScale);
+    }
 
     /// <inheritdoc />
-    public void AddDiagonalBlocks(Span<double> blocks) =>
+    public void AddDiagonalBlocks(Span<double> blocks)
+    {
+        _linearized.Check(nameof(Dampers), _pairs.Count, 0);
         LinearPairTerms.AddDiagonalBlocks(_pairs, blocks, _velocityScale);
+    }
 
     /// <inheritdoc />
     public int CouplingCount => _pairs.Count;
@@ -74,6 +82,9 @@ public sealed class Dampers : IForceGenerator, IBoundForce, IJacobianCouplings
     public void WriteCouplings(Span<int> first, Span<int> second) => LinearPairTerms.WriteCouplings(_pairs, first, second);
 
     /// <inheritdoc />
-    public void AddCouplingBlocks(Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock) =>
+    public void AddCouplingBlocks(Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock)
+    {
+        _linearized.Check(nameof(Dampers), _pairs.Count, 0);
         LinearPairTerms.AddCouplingBlocks(_pairs, destination, forwardBlock, backwardBlock, _velocityScale);
+    }
 }

@@ -28,11 +28,19 @@ internal sealed class ForceElements
     /// <summary>The parameters, <c>parametersPerElement</c> consecutive values per element.</summary>
     public double[] Parameters { get; private set; } = Array.Empty<double>();
 
+    /// <summary>The most elements one generator holds, so that every array (up to 6 parameters each) stays within .NET's array limit.</summary>
+    public const int MaxElements = 256 * 1024 * 1024;
+
     public int Add(int first, int second, ReadOnlySpan<double> parameters)
     {
+        if (Count == MaxElements)
+        {
+            throw new InvalidOperationException($"A force generator holds at most {MaxElements} elements; this one is full.");
+        }
+
         if (Count == First.Length)
         {
-            var capacity = Math.Max(8, 2 * Count);
+            var capacity = (int)Math.Min(MaxElements, Math.Max(8L, 2L * Count));
             var firsts = First;
             var seconds = Second;
             var values = Parameters;

@@ -15,6 +15,7 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
     private readonly ParticleWorld? _system;
     private double _coefficient;
     private double _linearized;
+    private LinearizationStamp _stamp;
 
     /// <summary>Drag on every particle of whichever system the generator is added to.</summary>
     /// <param name="coefficient">lambda, in N s/m: a finite number &gt;= 0.</param>
@@ -85,11 +86,13 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
         in ParticleState state, double positionScale, double velocityScale, Span<double> positionJacobianTimesVelocity)
     {
         _linearized = -_coefficient * velocityScale;
+        _stamp.Record(0, 0);
     }
 
     /// <inheritdoc />
     public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
     {
+        _stamp.Check(nameof(LinearDrag), 0, 0);
         var wr = w.ForReading();
         var c = _linearized;
         if (_particles is null)
@@ -114,6 +117,7 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
     /// <inheritdoc />
     public void AddDiagonalBlocks(Span<double> blocks)
     {
+        _stamp.Check(nameof(LinearDrag), 0, 0);
         var c = _linearized;
         if (_particles is null)
         {

@@ -28,6 +28,16 @@ internal sealed unsafe class ParallelSpringForces
             _springForces = new double[3 * pairs.First.Length];
         }
 
+        // Every pointer below stays inside its array: the buffers hold 3 values per particle (checked here), the
+        // spring ends are below the particle count (checked when each spring was added), the per-spring slots and the
+        // incidence were sized for these springs and particles (just above).
+        var needed = 3 * particleCount;
+        if (x.Length < needed || v.Length < needed || forces.Length < needed || pairs.Parameters.Length < 3 * pairs.Count)
+        {
+            throw new ArgumentException(
+                $"The parallel spring pass needs buffers of {needed} values; got {x.Length}, {v.Length} and {forces.Length}.");
+        }
+
         var chunks = 4 * runner.MaxParallelism;
         fixed (double* xp = &MemoryMarshal.GetReference(x), vp = &MemoryMarshal.GetReference(v), fp = forces, sf = _springForces, parameters = pairs.Parameters)
         fixed (int* first = pairs.First, second = pairs.Second)

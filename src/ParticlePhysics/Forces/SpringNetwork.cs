@@ -32,6 +32,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     private const int LinearStride = 5;
     private double[] _linear = Array.Empty<double>();
     private double[] _anchoredLinear = Array.Empty<double>();
+    private LinearizationStamp _linearized;
 
     // Parallel evaluation: below this many springs, waking other threads costs more than it saves.
     private const int ParallelThreshold = 4096;
@@ -169,7 +170,9 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         }
 
         // The hot loop of every explicit step: pointers, because each spring gathers and scatters by index and the
-        // bounds check of every access would otherwise cost as much as the arithmetic.
+        // bounds check of every access would otherwise cost as much as the arithmetic. Every pointer stays inside its
+        // array: the indices were checked against the world's count when added (the count never falls), CheckSizes
+        // checked the buffers against that count, and the element arrays hold at least Count elements.
         fixed (double* x = &MemoryMarshal.GetReference(state.Positions), v = &MemoryMarshal.GetReference(state.Velocities))
         fixed (double* f = forces, p = _pairs.Parameters)
         fixed (int* first = _pairs.First, second = _pairs.Second)
@@ -338,6 +341,8 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             AddPositionTerm(_anchoredLinear.AsSpan(LinearStride * s, LinearStride), k, iso,
                 vr[a], vr[a + 1], vr[a + 2], positionJacobianTimesVelocity, a, -1);
         }
+
+        _linearized.Record(_pairs.Count, _anchored.Count);
     }
 
     /// <inheritdoc />
@@ -345,8 +350,15 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     {
         var wr = w.ForReading();
         CheckSizes(w.Length, w.Length, result.Length);
+        _linearized.Check(nameof(SpringNetwork), _pairs.Count, _anchored.Count);
+        if (_linear.Length < LinearStride * _pairs.Count)
+        {
+            // Unreachable after the check above (Linearize sized it for Count springs); kept where the pointer is taken.
+            throw new InvalidOperationException("SpringNetwork's linearisation is shorter than its springs.");
+        }
 
-        // The hot loop of every conjugate-gradient iteration: pointers for the same reason as in AddForces.
+        // The hot loop of every conjugate-gradient iteration: pointers for the same reason as in AddForces; the
+        // linearisation covers exactly the Count springs (checked above).
         fixed (double* wp = &MemoryMarshal.GetReference(w), y = result, lin = _linear)
         fixed (int* first = _pairs.First, second = _pairs.Second)
         {
@@ -393,6 +405,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     /// <inheritdoc />
     public unsafe void AddDiagonalBlocks(Span<double> blocks)
     {
+        _linearized.Check(nameof(SpringNetwork), _pairs.Count, _anchored.Count);
         if (blocks.Length < 9 * _system.Count)
         {
             throw new ArgumentException($"blocks must hold 9 values per particle, {9 * _system.Count}; it holds {blocks.Length}.", nameof(blocks));
@@ -435,6 +448,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     public unsafe void AddCouplingBlocks(Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock)
     {
         LinearPairTerms.CheckTargets(_pairs.Count, destination.Length, forwardBlock, backwardBlock);
+        _linearized.Check(nameof(SpringNetwork), _pairs.Count, _anchored.Count);
         fixed (double* c = destination, lin = _linear)
         fixed (int* forward = &MemoryMarshal.GetReference(forwardBlock), backward = &MemoryMarshal.GetReference(backwardBlock))
         {

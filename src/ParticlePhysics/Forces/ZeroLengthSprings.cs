@@ -18,6 +18,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     private double _positionScale;
     private int _topologyVersion;
     private int _parameterVersion;
+    private LinearizationStamp _linearized;
 
     /// <summary>An empty set of springs for the particles of <paramref name="system"/>.</summary>
     public ZeroLengthSprings(ParticleWorld system)
@@ -195,11 +196,14 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
                 positionJacobianTimesVelocity[a + c] -= k * v[a + c];
             }
         }
+
+        _linearized.Record(_pairs.Count, _anchored.Count);
     }
 
     /// <inheritdoc />
     public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
     {
+        _linearized.Check(nameof(ZeroLengthSprings), _pairs.Count, _anchored.Count);
         var wr = w.ForReading();
         LinearPairTerms.AddScaledDifferences(_pairs, w, result, _positionScale);
         for (var s = 0; s < _anchored.Count; s++)
@@ -216,6 +220,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     /// <inheritdoc />
     public void AddDiagonalBlocks(Span<double> blocks)
     {
+        _linearized.Check(nameof(ZeroLengthSprings), _pairs.Count, _anchored.Count);
         LinearPairTerms.AddDiagonalBlocks(_pairs, blocks, _positionScale);
         for (var s = 0; s < _anchored.Count; s++)
         {
@@ -230,6 +235,9 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     public void WriteCouplings(Span<int> first, Span<int> second) => LinearPairTerms.WriteCouplings(_pairs, first, second);
 
     /// <inheritdoc />
-    public void AddCouplingBlocks(Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock) =>
+    public void AddCouplingBlocks(Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock)
+    {
+        _linearized.Check(nameof(ZeroLengthSprings), _pairs.Count, _anchored.Count);
         LinearPairTerms.AddCouplingBlocks(_pairs, destination, forwardBlock, backwardBlock, _positionScale);
+    }
 }

@@ -83,6 +83,12 @@ internal sealed unsafe class AggregationMultigrid
     public void Setup(ILinearizableSystem system, double[] fineDiagonal, Span<double> masses, Span<double> inverseMasses, IParallelRunner? runner)
     {
         var particles = masses.Length;
+        if (inverseMasses.Length != particles || fineDiagonal.Length < 9L * particles)
+        {
+            throw new ArgumentException(
+                $"The multigrid needs 9 diagonal values and one inverse mass per particle, for {particles} particles.");
+        }
+
         var count = system.CouplingCount;
         if (count != _couplings || particles != _particles || !SameCouplings(system, count))
         {
@@ -116,6 +122,14 @@ internal sealed unsafe class AggregationMultigrid
     /// </summary>
     public double Apply(double[] fineInverse, double[] r, double[] z, Span<double> inverseMasses, IParallelRunner? runner)
     {
+        // The fine passes run their pointers over the particles of the hierarchy: every array must cover them.
+        var particles = inverseMasses.Length;
+        if (particles != _particles || r.Length < 3L * particles || z.Length < 3L * particles || fineInverse.Length < 9L * particles)
+        {
+            throw new InvalidOperationException(
+                $"The multigrid was set up for {_particles} particles; it was applied to {particles}, or to vectors shorter than theirs.");
+        }
+
         var first = _levels[0];
         fixed (double* rp = r, zp = z, inv = fineInverse, w = inverseMasses)
         fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members)
@@ -343,10 +357,13 @@ internal sealed unsafe class AggregationMultigrid
         _checkFirst = new int[count]; // (here, so that the next step's check allocates nothing)
         _checkSecond = new int[count];
         system.WriteCouplings(_first, _second);
-        _couplings = count;
-        _particles = particles;
         _levels = Array.Empty<Level>();
         _filteredFor = Array.Empty<bool>();
+
+        // Marked as built only once the couplings are checked: a hierarchy that failed here is built (and fails) again
+        // at the next step, instead of that step finding the same couplings and falling back to block Jacobi silently.
+        _couplings = -1;
+        _particles = -1;
         for (var e = 0; e < count; e++)
         {
             if ((uint)_first[e] >= (uint)particles || (uint)_second[e] >= (uint)particles)
@@ -355,6 +372,9 @@ internal sealed unsafe class AggregationMultigrid
                     $"Coupling {e} joins particles {_first[e]} and {_second[e]}; the system has {particles}.");
             }
         }
+
+        _couplings = count;
+        _particles = particles;
 
         var fine = Graph.FromPairs(particles, _first, _second, count);
         if (particles <= CoarsestNodes || fine.EdgeCount == 0)

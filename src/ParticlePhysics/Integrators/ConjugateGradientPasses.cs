@@ -53,6 +53,15 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         double[] dv, double[] r, double[] p, double[] q, double[] z, double[] jw, double[] inverseBlocks,
         Span<double> masses, Span<double> inverseMasses, IParallelRunner? runner)
     {
+        // Every pass runs its pointers over 3 values per particle (9 for the blocks): checked here, where they are bound.
+        var n = 3L * masses.Length;
+        if (inverseMasses.Length != masses.Length || dv.Length < n || r.Length < n || p.Length < n || q.Length < n
+            || z.Length < n || jw.Length < n || inverseBlocks.Length < 3 * n)
+        {
+            throw new ArgumentException(
+                $"The conjugate gradients' vectors need {n} values each and the blocks {3 * n} for {masses.Length} particles.");
+        }
+
         if (_masses.Length != masses.Length)
         {
             _masses = new double[masses.Length];
@@ -72,9 +81,19 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         _particles = masses.Length;
     }
 
+    private void CheckLength(double[] values)
+    {
+        if (values.Length < 3L * _particles)
+        {
+            throw new ArgumentException($"A vector of the conjugate gradients needs {3L * _particles} values; it has {values.Length}.");
+        }
+    }
+
     /// <summary>a . b.</summary>
     public double Dot(double[] a, double[] b)
     {
+        CheckLength(a);
+        CheckLength(b);
         fixed (double* pa = a, pb = b)
         {
             _a = pa;
@@ -86,6 +105,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     /// <summary>q = M w - J w on the free particles (J w from <see cref="JacobianProduct"/>), 0 on pinned ones; returns w . q.</summary>
     public double MassMinusJacobian(double[] w)
     {
+        CheckLength(w);
         fixed (double* pw = w)
         {
             _a = pw;

@@ -17,6 +17,11 @@ namespace ParticlePhysics.Integrators;
 /// next step's first (FSAL). Internal steps are shortened so that the interval ends exactly at t + dt.
 /// Stability: adaptive, so it follows the fastest time scale of the system; on a stiff cloth it takes many
 /// small steps rather than diverging. Use <c>implicit-euler</c> for stiff systems at large steps.
+/// Bounded work: the tolerance is at least <see cref="MinTolerance"/> (100 machine epsilons, the floor of MATLAB's
+/// ode45 and SciPy's solve_ivp: below it the error estimate is rounding noise and no step passes); a call takes at most
+/// <see cref="MaxStepsPerCall"/> internal steps; and an internal step that must shrink below 16 units in the last
+/// place of t fails the call. Each failure throws <see cref="SolverNotConvergedException"/> before anything is
+/// committed.
 /// </remarks>
 public sealed class DormandPrince45 : IStatefulIntegrator
 {
@@ -43,6 +48,8 @@ public sealed class DormandPrince45 : IStatefulIntegrator
     private double[]? _stage;
     private double _tolerance;
     private double _stepSize;
+    private double _pendingStepSize = -1; // the step size the last Step ended with, until committed; -1: none
+    private int _maxStepsPerCall = DefaultMaxStepsPerCall;
 
     /// <summary>Creates the integrator.</summary>
     /// <param name="tolerance">The error bound per internal step, relative to 1 + |y| for each component.</param>
@@ -57,14 +64,48 @@ public sealed class DormandPrince45 : IStatefulIntegrator
     /// <inheritdoc />
     public int Order => 5;
 
-    /// <summary>The error bound per internal step (a positive finite number; default 1e-8).</summary>
+    /// <summary>The smallest <see cref="Tolerance"/>: 100 machine epsilons, 2.2e-14.</summary>
+    public const double MinTolerance = 100 * 2.220446049250313e-16;
+
+    /// <summary>The default <see cref="MaxStepsPerCall"/>: 10,000 internal steps (about 70,000 evaluations).</summary>
+    public const int DefaultMaxStepsPerCall = 10_000;
+
+    /// <summary>The error bound per internal step: a finite number from <see cref="MinTolerance"/> up (default 1e-8).</summary>
     public double Tolerance
     {
         get => _tolerance;
         set
         {
             Guard.PositiveFinite(value, nameof(Tolerance));
+            if (value < MinTolerance)
+            {
+                throw new ArgumentOutOfRangeException(
+                    nameof(Tolerance),
+                    value,
+                    $"Tolerance must be at least {Guard.Format(MinTolerance)} (100 machine epsilons: below it the error "
+                    + $"estimate is rounding noise and no step can pass); got {Guard.Format(value)}.");
+            }
+
             _tolerance = value;
+        }
+    }
+
+    /// <summary>
+    /// The most internal steps (accepted or rejected) one call to <see cref="Step"/> may take, at least 1 (default
+    /// <see cref="DefaultMaxStepsPerCall"/>); a call that needs more throws <see cref="SolverNotConvergedException"/>.
+    /// </summary>
+    public int MaxStepsPerCall
+    {
+        get => _maxStepsPerCall;
+        set
+        {
+            if (value < 1)
+            {
+                throw new ArgumentOutOfRangeException(
+                    nameof(MaxStepsPerCall), value, $"MaxStepsPerCall must be at least 1; got {value}.");
+            }
+
+            _maxStepsPerCall = value;
         }
     }
 
@@ -76,6 +117,7 @@ public sealed class DormandPrince45 : IStatefulIntegrator
         {
             Guard.NonNegativeFinite(value, nameof(CurrentStepSize));
             _stepSize = value;
+            _pendingStepSize = -1;
         }
     }
 
@@ -89,9 +131,14 @@ public sealed class DormandPrince45 : IStatefulIntegrator
     public long Evaluations { get; private set; }
 
     /// <inheritdoc />
+    /// <exception cref="SolverNotConvergedException">
+    /// The interval needs more than <see cref="MaxStepsPerCall"/> internal steps, or an internal step below the
+    /// smallest step size, to meet <see cref="Tolerance"/>; the state and the step size are left as they were.
+    /// </exception>
     public void Step(IOdeSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double dt)
     {
         StepChecks.Check(system, state, next, dt);
+        _pendingStepSize = -1;
         var n = state.Length;
         for (var s = 0; s < _k.Length; s++)
         {
@@ -105,16 +152,51 @@ public sealed class DormandPrince45 : IStatefulIntegrator
         var t = time;
         Evaluate(system, t, y, _k[0]);
         var h = _stepSize > 0 ? _stepSize : InitialStepSize(system, t, y, _k[0], stage, _k[1]);
-        var minimum = 16 * Ulp(Math.Max(Math.Abs(time), Math.Abs(end)));
+        var attempts = 0;
 
         while (t < end)
         {
+            if (attempts++ == _maxStepsPerCall)
+            {
+                throw new SolverNotConvergedException(end, attempts - 1, double.NaN, _tolerance, string.Format(
+                    System.Globalization.CultureInfo.InvariantCulture,
+                    "rk45 needed more than {0} internal steps for the interval from t={1:R} to t={2:R} (it reached t={3:R} "
+                    + "with steps of {4:R} s). Take a shorter dt (the output interval), raise MaxStepsPerCall or "
+                    + "loosen Tolerance, or use implicit-euler for a stiff system.",
+                    _maxStepsPerCall,
+                    time,
+                    end,
+                    t,
+                    h));
+            }
+
+            // The smallest step worth taking at t: 16 units in the last place of t (of the time reached, not of the
+            // interval's end, which for a long interval would pass every step however bad its error).
+            var minimum = 16 * Ulp(Math.Abs(t));
             var last = t + h >= end;
             var attempt = last ? end - t : h;
             var error = Attempt(system, t, y, attempt, next);
-            if (error <= 1.0 || attempt <= minimum)
+            if (error > 1.0 && attempt <= minimum)
             {
-                // Accepted (or the step can shrink no further: the caller's finiteness check judges the result).
+                if (DoubleChecks.FirstNonFinite(next) >= 0)
+                {
+                    // The derivative is not finite at any step size: leave the result to the caller's finiteness
+                    // check, which reports it as a divergence (as for every other integrator).
+                    return;
+                }
+
+                throw new SolverNotConvergedException(end, attempts, error, _tolerance, string.Format(
+                    System.Globalization.CultureInfo.InvariantCulture,
+                    "rk45 could not meet its tolerance {0:R} at t={1:R}: the step shrank to {2:R} s, the smallest it can "
+                    + "take there, with a scaled error of {3:R}. Loosen Tolerance, or use implicit-euler for a stiff system.",
+                    _tolerance,
+                    t,
+                    attempt,
+                    error));
+            }
+
+            if (error <= 1.0)
+            {
                 AcceptedSteps++;
                 t = last ? end : t + attempt;
                 next.CopyTo(y);
@@ -138,9 +220,23 @@ public sealed class DormandPrince45 : IStatefulIntegrator
             }
         }
 
-        _stepSize = h;
+        _pendingStepSize = h;
         y.AsSpan().CopyTo(next);
     }
+
+    /// <inheritdoc />
+    /// <remarks>The step size the last call ended with becomes the one the next call starts from.</remarks>
+    public void CommitStep()
+    {
+        if (_pendingStepSize >= 0)
+        {
+            _stepSize = _pendingStepSize;
+            _pendingStepSize = -1;
+        }
+    }
+
+    /// <inheritdoc />
+    public void DiscardStep() => _pendingStepSize = -1;
 
     /// <inheritdoc />
     /// <remarks>One value: <see cref="CurrentStepSize"/>, the internal step the next call starts from.</remarks>
@@ -167,7 +263,7 @@ public sealed class DormandPrince45 : IStatefulIntegrator
                 $"source must hold exactly {StateLength} value; it holds {source.Length}.", nameof(source));
         }
 
-        CurrentStepSize = source.ForReading()[0];
+        CurrentStepSize = source.ForReading()[0]; // checks the value, and forgets a step not committed
     }
 
     private static double Ulp(double x) => Math.Max(double.Epsilon, x * 2.220446049250313e-16);

@@ -30,10 +30,14 @@ public sealed class ImplicitEuler : IStatefulIntegrator
 
     private double _tolerance = 1e-6;
     private int _maxIterations = 200;
-    // Warm start: the last two steps' dv, and how many of them are known (0, 1 or 2).
+
+    // Warm start, as of the last committed step (IStatefulIntegrator): the last two steps' dv, how many of them are
+    // known (0, 1 or 2) and their length. A step solves into the scratch _dv; CommitStep makes it the last one.
+    private double[]? _lastDv;
     private double[]? _previousDv;
     private int _knownSteps;
     private int _dvLength = -1;
+    private int _pendingKnown = -1; // the steps known once the pending step is committed; -1: none pending
 
     // Particle-system path: 3 N values each, except the 9 N preconditioner blocks.
     private double[]? _force;
@@ -142,7 +146,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         destination[0] = _knownSteps;
         if (_knownSteps >= 1)
         {
-            _dv.AsSpan(0, _dvLength).CopyTo(destination.Slice(1));
+            _lastDv.AsSpan(0, _dvLength).CopyTo(destination.Slice(1));
         }
 
         if (_knownSteps == 2)
@@ -168,12 +172,13 @@ public sealed class ImplicitEuler : IStatefulIntegrator
                 nameof(source));
         }
 
+        _pendingKnown = -1;
         _knownSteps = (int)known;
         _dvLength = _knownSteps == 0 ? -1 : (source.Length - 1) / _knownSteps;
         if (_knownSteps >= 1)
         {
-            _dv = StepChecks.Sized(_dv, _dvLength);
-            source.Slice(1, _dvLength).CopyTo(_dv);
+            _lastDv = StepChecks.Sized(_lastDv, _dvLength);
+            source.Slice(1, _dvLength).CopyTo(_lastDv);
         }
 
         if (_knownSteps == 2)
@@ -184,9 +189,34 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     }
 
     /// <inheritdoc />
+    /// <remarks>The warm start of the step just taken, if any, becomes the one the next step starts from.</remarks>
+    public void CommitStep()
+    {
+        if (_pendingKnown < 0)
+        {
+            return;
+        }
+
+        // Rotate the buffers: the solved dv becomes the last step's, the last becomes the one before, and the old one
+        // before is the next step's scratch. No copy, nothing allocated.
+        (_previousDv, _lastDv, _dv) = (_lastDv, _dv, _previousDv);
+        _knownSteps = _pendingKnown;
+        _dvLength = _lastDv!.Length;
+        _pendingKnown = -1;
+    }
+
+    /// <inheritdoc />
+    public void DiscardStep() => _pendingKnown = -1;
+
+    /// <inheritdoc />
+    /// <exception cref="SimulationDivergedException">
+    /// A force, the implicit system's right-hand side or its solve is not finite (a force that writes NaN or
+    /// infinity, or a step so large that h^2 times the stiffness overflows): the step cannot be taken.
+    /// </exception>
     public void Step(IOdeSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double dt)
     {
         StepChecks.Check(system, state, next, dt);
+        _pendingKnown = -1;
         if (system is ILinearizableSystem linearizable)
         {
             StepLinearized(linearizable, time, state, next, dt);
@@ -198,6 +228,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
 
         if (!LastConverged && ThrowIfNotConverged)
         {
+            _pendingKnown = -1;
             throw new SolverNotConvergedException(
                 time + dt, LastIterations, LastResidual, system is ILinearizableSystem ? _tolerance : NewtonTolerance);
         }
@@ -212,6 +243,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         var f0 = _force = StepChecks.Sized(_force, n);
         var b = _rhs = StepChecks.Sized(_rhs, n);
         var dv = _dv = StepChecks.Sized(_dv, n);
+        _lastDv ??= new double[n];     // the three buffers that CommitStep rotates, all from the first step (a null one
+        _previousDv ??= new double[n]; // is no part of the committed state), so that later steps allocate nothing
         var r = _residual = StepChecks.Sized(_residual, n);
         var p = _direction = StepChecks.Sized(_direction, n);
         var q = _product = StepChecks.Sized(_product, n);
@@ -225,6 +258,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
 
         // f0, and the linearisation: K v0 accumulates into jw, the diagonal blocks of h D + h^2 K into blocks.
         system.AccumulateForces(end, x0, v0).CopyTo(f0);
+        CheckFinite(f0, inverseMasses, time, end, "the force on particle {0} is {1}: a force generator wrote a value that is not finite");
         Array.Clear(jw, 0, n);
         Array.Clear(blocks, 0, blocks.Length);
         system.Linearize(end, x0, v0, h * h, h, UserForces, jw);
@@ -236,6 +270,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         {
             b[k] = inverseMasses[k / 3] == 0.0 ? 0.0 : h * (f0[k] + (h * jw[k]));
         }
+
+        CheckFinite(b, inverseMasses, time, end, "the implicit system's right-hand side h (f + h K v) at particle {0} is {1}: the step is too large for these forces");
 
         var multigrid = Preconditioner == ImplicitPreconditioner.Multigrid && n >= 3 * MultigridThreshold;
         if (multigrid)
@@ -253,19 +289,21 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         var passes = _passes ??= new ConjugateGradientPasses();
         passes.Bind(dv, r, p, q, z, jw, blocks, masses, inverseMasses, runner);
         var rhsNorm = Math.Sqrt(passes.Dot(b, b));
-        var previous = _previousDv = StepChecks.Sized(_previousDv, n);
-        if (!WarmStart || _dvLength != n)
+        if (!DoubleChecks.IsFinite(rhsNorm))
         {
-            _knownSteps = 0;
+            throw Diverged(time, end, 0, rhsNorm, "the norm of the implicit system's right-hand side overflows: the step is too large for these forces");
         }
 
-        if (_knownSteps > 0)
+        // The committed warm start is only read here: a step that fails leaves it as it was (CommitStep moves dv in).
+        var known = WarmStart && _dvLength == n ? _knownSteps : 0;
+        if (known > 0)
         {
+            var lastDv = _lastDv!;
+            var previous = _previousDv;
             for (var k = 0; k < n; k++)
             {
-                var last = dv[k];
-                var guess = _knownSteps > 1 ? (2.0 * last) - previous[k] : last;
-                previous[k] = last;
+                var last = lastDv[k];
+                var guess = known > 1 ? (2.0 * last) - previous![k] : last;
                 dv[k] = inverseMasses[k / 3] == 0.0 ? 0.0 : guess;
             }
 
@@ -295,9 +333,14 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         while (residualNorm > target && iterations < _maxIterations)
         {
             var pq = ApplySystemMatrix(system, passes, p);
+            if (!DoubleChecks.IsFinite(pq))
+            {
+                throw Diverged(time, end, 0, pq, "the implicit system's matrix M - h D - h^2 K is not finite: the step is too large for these forces");
+            }
+
             if (!(pq > 0.0))
             {
-                break; // not positive definite along p (or NaN): keep the best solution so far
+                break; // not positive definite along p: keep the best solution so far
             }
 
             var alpha = rz / pq;
@@ -327,8 +370,14 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         LastIterations = iterations;
         LastResidual = rhsNorm > 0.0 ? residualNorm / rhsNorm : 0.0;
         LastConverged = residualNorm <= target;
-        _knownSteps = DoubleChecks.FirstNonFinite(dv) < 0 ? Math.Min(2, _knownSteps + 1) : 0;
-        _dvLength = n;
+        CheckFinite(dv, inverseMasses, time, end, "the implicit solve's velocity change at particle {0} is {1}");
+        if (!DoubleChecks.IsFinite(residualNorm))
+        {
+            LastConverged = false;
+            throw Diverged(time, end, 0, residualNorm, "the implicit solve's residual is not finite");
+        }
+
+        _pendingKnown = Math.Min(2, known + 1);
 
         var x1 = next.Slice(0, n);
         var v1 = next.Slice(n, n);
@@ -342,6 +391,31 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     /// <summary>z = P r with the multigrid or block Jacobi; returns r . z, summed in chunk order.</summary>
     private double Precondition(ConjugateGradientPasses passes, bool multigrid, IParallelRunner? runner) =>
         multigrid ? _multigrid!.Apply(_blocks!, _residual!, _preconditioned!, passes.InverseMasses, runner) : passes.Jacobi();
+
+    /// <summary>Throws the step's failure at the first value of <paramref name="values"/> (3 per particle) that is not finite, skipping pinned particles.</summary>
+    private void CheckFinite(double[] values, Span<double> inverseMasses, double time, double end, string cause)
+    {
+        var bad = DoubleChecks.FirstNonFinite(values);
+        while (bad >= 0 && inverseMasses[bad / 3] == 0.0)
+        {
+            var rest = DoubleChecks.FirstNonFinite(values.AsSpan(bad + 1));
+            bad = rest < 0 ? -1 : bad + 1 + rest;
+        }
+
+        if (bad >= 0)
+        {
+            throw Diverged(time, end, bad, values[bad], string.Format(
+                System.Globalization.CultureInfo.InvariantCulture, cause, bad / 3, values[bad]));
+        }
+    }
+
+    /// <summary>The failure of a step at coordinate <paramref name="k"/> (its velocity component in the state vector).</summary>
+    private SimulationDivergedException Diverged(double time, double end, int k, double value, string cause)
+    {
+        LastConverged = false;
+        var n = _force?.Length ?? 0;
+        return new SimulationDivergedException(end, time, n + k, k / 3, value, double.MaxValue, cause);
+    }
 
     /// <summary>q = (M - J) w on the free particles, 0 on the pinned ones; returns w . q, summed in chunk order.</summary>
     private static double ApplySystemMatrix(ILinearizableSystem system, ConjugateGradientPasses passes, double[] w)

@@ -56,6 +56,7 @@ public sealed class SimulationSnapshot
     public const int MaxIntegratorNameLength = 256;
 
     private const int HeaderSize = 28;
+    private const int ReadChunk = 64 * 1024;
     private const int ChecksumSize = 4;
     private static readonly byte[] _magic = { (byte)'P', (byte)'P', (byte)'S', (byte)'N' };
 
@@ -167,6 +168,7 @@ public sealed class SimulationSnapshot
     public void RestoreTo(ParticleWorld system, IIntegrator? integrator = null)
     {
         Guard.NotNull(system, nameof(system));
+        system.ThrowIfStepping();
         if (system.Count != ParticleCount)
         {
             throw new ArgumentException(
@@ -205,6 +207,8 @@ public sealed class SimulationSnapshot
             }
         }
 
+        // Nothing below can fail: the masses and the state were checked when captured or read, and the world is not
+        // in a step (checked above), so the integrator's state, read first, is never left restored alone.
         for (var i = 0; i < _masses.Length; i++)
         {
             system.SetMass(i, _masses[i]);
@@ -323,9 +327,7 @@ public sealed class SimulationSnapshot
                 + $"{HeaderSize + stream.Length - stream.Position} remain in the stream.");
         }
 
-        var bytes = new byte[total];
-        header.CopyTo(bytes, 0);
-        ReadExactly(stream, bytes, HeaderSize, total - HeaderSize, $"the payload of {n} particles");
+        var bytes = ReadPayload(stream, header, total, $"the payload of {n} particles");
         var span = bytes.AsSpan();
         var stored = BinaryPrimitives.ReadUInt32LittleEndian(span.Slice(total - ChecksumSize));
         var computed = Crc32.Compute(span.Slice(0, total - ChecksumSize));
@@ -401,10 +403,11 @@ public sealed class SimulationSnapshot
         for (var i = 0; i < n; i++)
         {
             var mass = snapshot._masses[i];
-            if (!(mass > 0.0) || !DoubleChecks.IsFinite(mass))
+            if (!(mass > 0.0) || !DoubleChecks.IsFinite(mass) || !DoubleChecks.IsFinite(1.0 / mass))
             {
                 throw new InvalidDataException(
-                    $"Particle {i}'s mass is {Guard.Format(mass)}; it must be a positive finite number.");
+                    $"Particle {i}'s mass is {Guard.Format(mass)}; it must be a positive finite number of at least "
+                    + $"{Guard.Format(Guard.SmallestMass)} kg (so that its inverse is finite).");
             }
 
             var radius = snapshot._radii[i];
@@ -416,6 +419,39 @@ public sealed class SimulationSnapshot
         }
 
         return snapshot;
+    }
+
+    /// <summary>
+    /// Reads the whole snapshot of <paramref name="total"/> bytes, its header already read, into a buffer that grows with
+    /// what the stream delivers (64 KiB, then doubling): a damaged header that announces millions of particles on a
+    /// stream that ends early costs a few kilobytes, not the hundreds of megabytes it announced.
+    /// </summary>
+    private static byte[] ReadPayload(Stream stream, byte[] header, int total, string what)
+    {
+        var buffer = new byte[Math.Min(total, HeaderSize + ReadChunk)];
+        header.CopyTo(buffer, 0);
+        var filled = HeaderSize;
+        while (filled < total)
+        {
+            if (filled == buffer.Length)
+            {
+                var grown = new byte[(int)Math.Min(total, 2L * buffer.Length)];
+                Buffer.BlockCopy(buffer, 0, grown, 0, filled);
+                buffer = grown;
+            }
+
+            var got = stream.Read(buffer, filled, buffer.Length - filled);
+            if (got <= 0)
+            {
+                throw new InvalidDataException(
+                    $"The snapshot is truncated: the stream ended after {filled} bytes, {total - filled} bytes "
+                    + $"short of the end of {what} ({total} bytes).");
+            }
+
+            filled += got;
+        }
+
+        return buffer;
     }
 
     private static void ReadExactly(Stream stream, byte[] buffer, int offset, int count, string what)

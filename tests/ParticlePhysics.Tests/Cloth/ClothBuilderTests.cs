@@ -140,6 +140,49 @@ public class ClothBuilderTests
         Assert.Throws<InvalidOperationException>(() => builder.Build());
     }
 
+    [Fact]
+    public void A_pinning_that_is_no_preset_is_refused_before_anything_is_added()
+    {
+        // Issue 10, item 6: the builder took any enum value, then AddTo added 9 particles and threw.
+        var world = WorldWithOneParticle();
+        var builder = new ClothBuilder { Rows = 3, Columns = 3 };
+        Assert.Equal("Pinning", Assert.Throws<ArgumentOutOfRangeException>(() => builder.Pinning = (ClothPinning)7).ParamName);
+        builder.AddTo(world);
+        Assert.Equal(10, world.Count);
+    }
+
+    [Theory]
+    [InlineData(11, 1e308, 1.0)]    // the third particle's x overflows: AddTo used to add 2 particles, then throw
+    [InlineData(2, 1.5e308, 1.0)]   // four finite corners, but the shear springs' rest length r sqrt(2) overflows
+    [InlineData(11, 0.1, 1e-307)]   // 121 particles of 8.3e-310 kg: each inverse mass is infinite
+    public void A_cloth_that_cannot_be_added_whole_leaves_the_world_as_it_was(int side, double spacing, double totalMass)
+    {
+        var world = WorldWithOneParticle();
+        var before = StateMetrics.BitHash(world.State);
+        var builder = new ClothBuilder { Rows = side, Columns = side, Spacing = spacing, TotalMass = totalMass };
+        var e = Assert.Throws<InvalidOperationException>(() => builder.AddTo(world));
+        Assert.Contains(totalMass < 1 ? "TotalMass" : "Spacing", e.Message, StringComparison.Ordinal);
+        Assert.Equal(1, world.Count);
+        Assert.Empty(world.Forces);
+        Assert.Equal(before, StateMetrics.BitHash(world.State));
+        Assert.Throws<InvalidOperationException>(() => builder.Build());
+    }
+
+    [Fact]
+    public void A_total_mass_whose_inverse_overflows_is_refused_by_the_setter()
+    {
+        var builder = new ClothBuilder();
+        Assert.Equal("TotalMass", Assert.Throws<ArgumentOutOfRangeException>(() => builder.TotalMass = 1e-322).ParamName);
+        Assert.Equal(1.0, builder.TotalMass);
+    }
+
+    private static ParticleWorld WorldWithOneParticle()
+    {
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(5, 5, 5), 1);
+        return world;
+    }
+
     private static int[] Pinned(ParticleWorld system)
     {
         var pinned = new List<int>();

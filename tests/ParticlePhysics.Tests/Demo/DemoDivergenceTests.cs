@@ -53,6 +53,29 @@ public class DemoDivergenceTests
     }
 
     [Fact]
+    public void A_free_fall_from_1e12_m_runs_to_the_end_and_matches_its_exact_solution()
+    {
+        // Issue 10, item 11: the contract allows any finite height; this one "diverged" at step 1 (exit 3).
+        var result = DemoProcess.Run("free-fall", "--height", "1.1e12", "--format", "csv");
+
+        Assert.Equal(0, result.ExitCode);
+        Assert.Equal("", result.Error);
+        var (header, rows) = result.Csv();
+        var last = rows[^1];
+        Assert.Equal(10.0, last[0], 12);
+        Assert.Equal(last[Array.IndexOf(header, "y0_exact")], last[Array.IndexOf(header, "y0")], 1.0);
+    }
+
+    [Fact]
+    public void A_divergence_says_which_speed_passed_the_limit()
+    {
+        var result = DemoProcess.Run(_oneFrameCloth.Append("--format").Append("csv").ToArray());
+
+        Assert.Equal(3, result.ExitCode);
+        Assert.Matches(@"particle \d+ reached v[xyz] = \S+ m/s, beyond the divergence limit 1E\+12 m/s", result.Error);
+    }
+
+    [Fact]
     public void The_same_cloth_at_its_default_step_does_not_diverge()
     {
         var result = DemoProcess.Run("cloth", "--duration", "0.5", "--format", "csv");

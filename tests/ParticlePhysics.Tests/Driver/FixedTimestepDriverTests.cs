@@ -94,15 +94,95 @@ public class FixedTimestepDriverTests
     }
 
     [Fact]
-    public void A_diverging_step_propagates_and_keeps_the_time_of_the_steps_not_run()
+    public void A_frame_that_diverges_leaves_everything_as_it_was_before_the_call()
     {
-        // SCENARIOS.md: explicit methods diverge on the default cloth at one 60 Hz frame per step.
+        // SCENARIOS.md: explicit methods diverge on the default cloth at one 60 Hz frame per step. Issue 10, item 5:
+        // before, the world kept the steps that had passed and the accumulator the time of those that had not.
         var system = new ParticlePhysics.Scenarios.ClothScenario().Build();
         var driver = new FixedTimestepDriver(system, new ExplicitEuler(), 1.0 / 64, maxStepsPerFrame: 1000);
-        Assert.Throws<SimulationDivergedException>(() => driver.Advance(500.0 / 64));
-        Assert.Equal(driver.StepCount / 64.0, system.Time);
-        Assert.Equal((500 - driver.StepCount) / 64.0, driver.Accumulator);
-        Assert.True(driver.StepCount < 500);
+        driver.Advance(0.5 / 64);
+        var before = Observe(driver);
+
+        var e = Assert.Throws<SimulationDivergedException>(() => driver.Advance(500.0 / 64));
+        Assert.Equal(0.0, e.LastFiniteTime);
+        Assert.Contains("last good state, t=0;", e.Message, StringComparison.Ordinal);
+        Assert.True(e.Time > 1.0 / 64);
+        Assert.Equal(before, Observe(driver));
+    }
+
+    [Fact]
+    public void A_sub_step_that_fails_in_the_middle_of_a_fixed_step_takes_the_whole_frame_back()
+    {
+        // The fuzzer's case: sub-step 3 of 4 failed, the world kept 2 sub-steps, the accumulator still held the frame
+        // and the interpolation's start was overwritten; the next Advance(0) left the time 2.5 fixed steps on, off the grid.
+        var cloth = SmallCloth();
+        var force = new FaultyForce { Particle = 9 };
+        cloth.System.AddForce(force);
+        var implicitEuler = new ImplicitEuler();
+        var driver = new FixedTimestepDriver(cloth.System, implicitEuler, Dt, subSteps: 4);
+        driver.Advance(2.5 * Dt);
+        var before = Observe(driver);
+        var warmStart = IntegratorState(implicitEuler);
+
+        force.Arm(Fault.Throw, afterEvaluations: 2); // implicit Euler evaluates once per sub-step: the third fails
+        Assert.Throws<InvalidOperationException>(() => driver.Advance(Dt));
+        Assert.Equal(before, Observe(driver));
+        Assert.Equal(warmStart, IntegratorState(implicitEuler));
+        Assert.Equal(0, driver.Advance(0));
+        Assert.Equal(2 * Dt, cloth.System.Time);
+
+        // Retried, the frame gives what a driver that never failed gives.
+        force.Arm(Fault.None);
+        driver.Advance(Dt);
+        var reference = SmallCloth();
+        reference.System.AddForce(new FaultyForce { Particle = 9 });
+        var referenceDriver = new FixedTimestepDriver(reference.System, new ImplicitEuler(), Dt, subSteps: 4);
+        referenceDriver.Advance(2.5 * Dt);
+        referenceDriver.Advance(Dt);
+        Assert.Equal(Observe(referenceDriver), Observe(driver));
+    }
+
+    [Fact]
+    public void A_frame_of_one_step_needs_no_copy_and_is_all_or_nothing_too()
+    {
+        var cloth = SmallCloth();
+        var force = new FaultyForce { Particle = 3 };
+        cloth.System.AddForce(force);
+        var driver = new FixedTimestepDriver(cloth.System, new DormandPrince45(), Dt);
+        driver.Advance(1.5 * Dt);
+        var before = Observe(driver);
+        force.Arm(Fault.NaN);
+        Assert.Throws<SimulationDivergedException>(() => driver.Advance(0.7 * Dt));
+        Assert.Equal(before, Observe(driver));
+    }
+
+    /// <summary>Everything a failed Advance must leave alone, as one string.</summary>
+    private static string Observe(FixedTimestepDriver driver)
+    {
+        var vertices = new Vector3[driver.System.Count];
+        driver.InterpolatePositions(vertices);
+        var rendered = new double[3 * vertices.Length];
+        for (var i = 0; i < vertices.Length; i++)
+        {
+            rendered[3 * i] = vertices[i].X;
+            rendered[(3 * i) + 1] = vertices[i].Y;
+            rendered[(3 * i) + 2] = vertices[i].Z;
+        }
+
+        return string.Join(
+            "|",
+            StateMetrics.BitHash(driver.System.State),
+            StateMetrics.BitHash(new[] { driver.System.Time, driver.Accumulator, driver.LastDroppedTime, driver.TotalDroppedTime }),
+            driver.StepCount,
+            StateMetrics.BitHash(rendered),
+            driver.Integrator is IStatefulIntegrator stateful ? StateMetrics.BitHash(IntegratorState(stateful)) : "-");
+    }
+
+    private static double[] IntegratorState(IStatefulIntegrator integrator)
+    {
+        var state = new double[integrator.StateLength];
+        integrator.WriteState(state);
+        return state;
     }
 
     [Fact]

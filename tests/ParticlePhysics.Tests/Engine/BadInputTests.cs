@@ -11,7 +11,12 @@ namespace ParticlePhysics.Tests.Engine;
 /// </summary>
 public class BadInputTests
 {
-    public static TheoryData<double> BadMasses() => new() { 0.0, -1.0, double.NaN, double.PositiveInfinity, double.NegativeInfinity };
+    // The last four (issue 10, item 7): positive and finite, but 1 / m overflows, so the first step failed with a
+    // misleading "retry with a smaller time step".
+    public static TheoryData<double> BadMasses() => new()
+    {
+        0.0, -1.0, double.NaN, double.PositiveInfinity, double.NegativeInfinity, 5e-324, 1e-320, 4.9e-309, 5.562684646268003e-309,
+    };
 
     public static TheoryData<double> NonFinite() => new() { double.NaN, double.PositiveInfinity, double.NegativeInfinity };
 
@@ -26,6 +31,15 @@ public class BadInputTests
         var system = TwoParticles(out _);
         AssertRejected(system, "mass", mass, () => system.AddParticle(Vector3d.Zero, mass));
         AssertRejected(system, "mass", mass, () => system.SetMass(0, mass));
+    }
+
+    [Fact]
+    public void The_smallest_mass_whose_inverse_is_finite_is_accepted_and_steps()
+    {
+        var system = TwoParticles(out _);
+        system.SetMass(1, 5.56268464626801e-309);
+        Assert.True(double.IsFinite(system.InverseMasses[1]));
+        system.AddParticle(Vector3d.Zero, 5.56268464626801e-309);
     }
 
     [Theory]
@@ -100,6 +114,47 @@ public class BadInputTests
         Assert.Contains(Guard.Format(dt), ex.Message, StringComparison.Ordinal);
         Assert.Equal(0, simulation.Time);
         Assert.Equal(1.0, simulation.State[0]);
+    }
+
+    [Fact]
+    public void A_step_that_would_end_at_an_infinite_time_is_refused()
+    {
+        // Issue 10, item 9: from double.MaxValue, dt = 1e300 made Time +infinity, and that state's snapshot could be
+        // written but not read back.
+        foreach (var name in IntegratorCatalog.Names)
+        {
+            var system = TwoParticles(out _);
+            system.Time = double.MaxValue;
+            AssertRejected(system, "dt", 1e300, () => system.Step(IntegratorCatalog.Create(name), 1e300));
+            Assert.Equal(double.MaxValue, system.Time);
+        }
+
+        // Found by the API fuzzer: from t = double.MaxValue a dt of 0.005 vanished (t + dt == t), so the step moved
+        // nothing, reported success, and rk45 kept a step size computed from a step that never ran.
+        foreach (var (time, dt) in new[] { (double.MaxValue, 0.005), (1e20, 1e-3), (1.0, 1e-17) })
+        {
+            var system = TwoParticles(out _);
+            system.Time = time;
+            AssertRejected(system, "dt", dt, () => system.Step(new DormandPrince45(), dt));
+        }
+
+        var simulation = new OdeSimulation(new Scenarios.GaussianDecayOde(), new[] { 1.0 }, initialTime: double.MaxValue);
+        var ex = Assert.Throws<ArgumentOutOfRangeException>("dt", () => simulation.Step(new ExplicitEuler(), 1e300));
+        Assert.Contains("end time must be finite", ex.Message, StringComparison.Ordinal);
+        Assert.Equal(double.MaxValue, simulation.Time);
+    }
+
+    [Theory]
+    [InlineData(-1)]
+    [InlineData(ParticleWorld.MaxParticles + 1)]
+    [InlineData(357_913_942)] // the smallest capacity whose 6 values per particle overflow an int
+    [InlineData(int.MaxValue)]
+    public void A_capacity_outside_0_to_the_world_limit_is_refused_with_its_value(int capacity)
+    {
+        // Issue 10, item 10: capacities from 357,913,942 up threw OverflowException.
+        var ex = Assert.Throws<ArgumentOutOfRangeException>("capacity", () => new ParticleWorld(capacity));
+        Assert.Contains(capacity.ToString(System.Globalization.CultureInfo.InvariantCulture), ex.Message, StringComparison.Ordinal);
+        Assert.Contains("4194304", ex.Message, StringComparison.Ordinal);
     }
 
     [Fact]

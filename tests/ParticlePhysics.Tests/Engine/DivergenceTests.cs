@@ -67,6 +67,49 @@ public class DivergenceTests
     }
 
     [Fact]
+    public void A_free_fall_from_1e12_m_runs_because_positions_may_take_any_finite_value()
+    {
+        // Issue 10, item 11: the limit used to bound coordinates at 1e12 m, so this valid world "diverged" at step 1.
+        var scenario = new FreeFallScenario { Height = 1.1e12 };
+        var system = scenario.Build();
+        StateMetrics.Run(system, new RungeKutta4(), 0.01, 1000);
+        var exact = new double[system.Dimension];
+        scenario.ExactState(system.Time, exact);
+        Assert.Equal(exact[1], system.GetPosition(0).Y, 1.0); // 1000 roundings at 1.2e-4 m apart (an ulp at 1.1e12 m)
+        Assert.Equal(exact[4], system.GetVelocity(0).Y, 1e-9);
+
+        var far = new FreeFallScenario { Height = -1.7e308, Drag = 0 }.Build();
+        StateMetrics.Run(far, new ExplicitEuler(), 0.01, 10);
+    }
+
+    [Theory]
+    [InlineData(0.0)]
+    [InlineData(1.1e12)]
+    public void A_cloth_that_blows_up_is_caught_within_half_a_second_wherever_it_hangs(double offset)
+    {
+        // The same blow-up as above, with the cloth at the origin and 1.1e12 m away: caught by its speeds, early,
+        // with a finite last good state (not at the overflow to infinity, seconds later).
+        var system = new ClothScenario().Build();
+        if (offset != 0)
+        {
+            var shifted = system.State.ToArray();
+            for (var k = 0; k < system.CoordinateCount; k += 3)
+            {
+                shifted[k] += offset;
+            }
+
+            system.SetState(shifted);
+        }
+
+        var ex = Assert.Throws<SimulationDivergedException>(() => StateMetrics.Run(system, new RungeKutta4(), 1.0 / 60, 600));
+        Assert.True(ex.Time < 0.5, $"reported at t={ex.Time}");
+        Assert.True(double.IsFinite(ex.Value) && Math.Abs(ex.Value) > ParticleWorld.DefaultDivergenceLimit);
+        Assert.True(ex.Component >= system.CoordinateCount, "the bound is on the velocities");
+        Assert.Contains($"particle {ex.Particle} reached v", ex.Message, StringComparison.Ordinal);
+        Assert.All(system.State.ToArray(), v => Assert.True(double.IsFinite(v)));
+    }
+
+    [Fact]
     public void Without_a_limit_only_non_finite_values_count_as_divergence()
     {
         var system = new ClothScenario().Build();

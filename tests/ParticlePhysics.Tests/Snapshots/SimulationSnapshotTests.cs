@@ -264,6 +264,40 @@ public class SimulationSnapshotTests
         Assert.True(target.IsPinned(0));
     }
 
+    [Fact]
+    public void A_header_that_announces_millions_of_particles_on_a_stream_that_ends_allocates_kilobytes_not_what_it_announced()
+    {
+        // Issue 10, item 8: 28 bytes announcing 4,194,304 particles made ReadFrom allocate 440 MB on a non-seekable
+        // stream before it reported the truncation.
+        var header = new byte[28];
+        Encoding.ASCII.GetBytes("PPSN").CopyTo(header, 0);
+        header[4] = SimulationSnapshot.FormatVersion;
+        BitConverter.TryWriteBytes(header.AsSpan(8), ParticleWorld.MaxParticles);
+        _ = Assert.Throws<InvalidDataException>(() => SimulationSnapshot.ReadFrom(new ForwardOnlyStream(header, 28))); // warm-up: JIT
+        var before = GC.GetAllocatedBytesForCurrentThread();
+        var e = Assert.Throws<InvalidDataException>(() => SimulationSnapshot.ReadFrom(new ForwardOnlyStream(header, 28)));
+        var allocated = GC.GetAllocatedBytesForCurrentThread() - before;
+        Assert.Contains("truncated", e.Message, StringComparison.Ordinal);
+        Assert.True(allocated < 256 * 1024, $"allocated {allocated} bytes for a 28-byte stream");
+
+        // Still bounded by what arrives: a megabyte of a 440 MB announcement costs a few megabytes at most.
+        var partial = new byte[1 << 20];
+        header.CopyTo(partial, 0);
+        before = GC.GetAllocatedBytesForCurrentThread();
+        Assert.Throws<InvalidDataException>(() => SimulationSnapshot.ReadFrom(new ForwardOnlyStream(partial, partial.Length)));
+        allocated = GC.GetAllocatedBytesForCurrentThread() - before;
+        Assert.True(allocated < 4 * partial.Length, $"allocated {allocated} bytes for a {partial.Length}-byte stream");
+    }
+
+    [Fact]
+    public void A_mass_whose_inverse_overflows_is_refused_when_read()
+    {
+        var system = ClothSystem();
+        var bytes = Serialized(system, null);
+        var masses = 28 + (48 * system.Count);
+        AssertInvalid(WithCrc(bytes, b => BitConverter.TryWriteBytes(b.AsSpan(masses + 8), 1e-320)), "Particle 1's mass");
+    }
+
     private static ParticleWorld ClothSystem() => new ClothBuilder { Rows = 4, Columns = 5, Spacing = 0.1 }.Build().System;
 
     private static byte[] Serialized(ParticleWorld system, IIntegrator? integrator)
@@ -286,47 +320,5 @@ public class SimulationSnapshotTests
     {
         var e = Assert.Throws<InvalidDataException>(() => SimulationSnapshot.ReadFrom(new MemoryStream(bytes)));
         Assert.Contains(expected, e.Message, StringComparison.Ordinal);
-    }
-
-    /// <summary>A stream that cannot seek and returns at most 7 bytes per read, like a network stream.</summary>
-    private sealed class ForwardOnlyStream : Stream
-    {
-        private readonly byte[] _bytes;
-        private readonly int _length;
-        private int _position;
-
-        public ForwardOnlyStream(byte[] bytes, int length)
-        {
-            _bytes = bytes;
-            _length = length;
-        }
-
-        public override bool CanRead => true;
-
-        public override bool CanSeek => false;
-
-        public override bool CanWrite => false;
-
-        public override long Length => throw new NotSupportedException();
-
-        public override long Position { get => throw new NotSupportedException(); set => throw new NotSupportedException(); }
-
-        public override int Read(byte[] buffer, int offset, int count)
-        {
-            var n = Math.Min(Math.Min(count, 7), _length - _position);
-            Array.Copy(_bytes, _position, buffer, offset, n);
-            _position += n;
-            return n;
-        }
-
-        public override void Flush()
-        {
-        }
-
-        public override long Seek(long offset, SeekOrigin origin) => throw new NotSupportedException();
-
-        public override void SetLength(long value) => throw new NotSupportedException();
-
-        public override void Write(byte[] buffer, int offset, int count) => throw new NotSupportedException();
     }
 }
