@@ -184,6 +184,17 @@ public class ParticleCollisionTests
         Assert.Equal(cleanContacts.Impacts.ToArray(), contacts.Impacts.ToArray());
     }
 
+    [Fact]
+    public void Under_substeps_collisions_switched_off_report_no_pairs_of_an_earlier_step()
+    {
+        var (world, contacts) = TwoStackedParticles(collisionsInStep1: true);
+        world.Step(new Xpbd(2), 0.02);
+        Assert.Equal(1, contacts.CandidatePairCount);
+        contacts.ParticleCollisions = false;
+        world.Step(new Xpbd(2), 0.02);
+        Assert.Equal(0, contacts.CandidatePairCount);
+    }
+
     /// <summary>Two particles of radius 0.1 at rest above an elastic ground, 0.02 m apart, after one step of 20 ms.</summary>
     private static (ParticleWorld World, ContactSet Contacts) TwoStackedParticles(bool collisionsInStep1)
     {
