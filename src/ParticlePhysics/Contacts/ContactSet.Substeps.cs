@@ -50,6 +50,7 @@ public sealed partial class ContactSet
         EnsureCapacity(n);
         _substepCount = 0;
         _impactCount = 0;
+        _pairCount = 0; // this substep's pairs, none when collisions are off (not those of an earlier step)
         var x = context.Positions;
         var v = context.Velocities;
         var previous = context.StartPositions.ForReading();

@@ -244,6 +244,9 @@ public sealed partial class ContactSet : IStatefulConstraintSet
             FindSweptPairs(n, duration, x0, x1, inverseMasses, radii);
         }
 
+        // Built every step, empty when collisions are off: the impact stage reads each particle's pairs through these
+        // lists, and lists left from an earlier step would collide pairs this step does not have.
+        IndexPairsByParticle(n);
         ResolveImpacts(in context);
         ApplyRestingFriction(in context);
         Separate(in context, _projectionIterations);
@@ -319,8 +322,12 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         }
 
         _pairCount = count;
+    }
 
-        // Each particle's pairs, in pair order (a counting sort of both ends).
+    /// <summary>Each particle's pairs among the step's candidate pairs (none when collisions are off), in pair order (a counting sort of both ends).</summary>
+    private void IndexPairsByParticle(int n)
+    {
+        var count = _pairCount;
         Array.Clear(_pairsOfStart, 0, n + 1);
         for (var p = 0; p < count; p++)
         {

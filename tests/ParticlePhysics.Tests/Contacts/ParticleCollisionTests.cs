@@ -155,4 +155,58 @@ public class ParticleCollisionTests
         FrictionTests.StepFor(world, "rk4", 0.01, 2.0);
         Assert.Equal(1.0, world.GetPosition(0).X, 12);
     }
+
+    [Fact]
+    public void Once_particle_collisions_are_off_no_pair_of_an_earlier_step_collides()
+    {
+        // Step 1, collisions on: particles 0 and 1, 0.02 m apart, are a candidate pair; nothing touches. Step 2,
+        // collisions off: particle 0 bounces off the ground at s = 5 ms and rises through particle 1. Before, the bounce
+        // requeued the pairs of step 1 (each particle's list of pairs was left as that step built it), and the two
+        // collided: a pair impact logged with collisions off, and particle 1 knocked up.
+        var (switched, contacts) = TwoStackedParticles(collisionsInStep1: true);
+        var (clean, cleanContacts) = TwoStackedParticles(collisionsInStep1: false);
+        Assert.Equal(1, contacts.CandidatePairCount);
+        Assert.Equal(0, cleanContacts.CandidatePairCount);
+
+        foreach (var (world, set) in new[] { (switched, contacts), (clean, cleanContacts) })
+        {
+            set.ParticleCollisions = false;
+            world.SetVelocity(0, new Vector3d(0, -10, 0));
+            world.Step(new RungeKutta4(), 0.02);
+        }
+
+        Assert.Equal(0, contacts.CandidatePairCount);
+        Assert.All(contacts.Impacts.ToArray(), impact => Assert.True(impact.WithObstacle, $"a pair impact {impact.Particle}-{impact.Other}"));
+        Assert.Equal(1, contacts.ImpactCount);
+        Assert.Equal(Vector3d.Zero, switched.GetVelocity(1));
+        Assert.Equal(0.25, switched.GetPosition(0).Y, 12); // on the ground at 5 ms, then up at 10 m/s for 15 ms
+        Assert.Equal(clean.State.ToArray(), switched.State.ToArray());
+        Assert.Equal(cleanContacts.Impacts.ToArray(), contacts.Impacts.ToArray());
+    }
+
+    [Fact]
+    public void Under_substeps_collisions_switched_off_report_no_pairs_of_an_earlier_step()
+    {
+        var (world, contacts) = TwoStackedParticles(collisionsInStep1: true);
+        world.Step(new Xpbd(2), 0.02);
+        Assert.Equal(1, contacts.CandidatePairCount);
+        contacts.ParticleCollisions = false;
+        world.Step(new Xpbd(2), 0.02);
+        Assert.Equal(0, contacts.CandidatePairCount);
+    }
+
+    /// <summary>Two particles of radius 0.1 at rest above an elastic ground, 0.02 m apart, after one step of 20 ms.</summary>
+    private static (ParticleWorld World, ContactSet Contacts) TwoStackedParticles(bool collisionsInStep1)
+    {
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(0, 0.15, 0), 1);
+        world.AddParticle(new Vector3d(0, 0.37, 0), 1);
+        world.SetRadius(0, 0.1);
+        world.SetRadius(1, 0.1);
+        var contacts = new ContactSet { ParticleCollisions = collisionsInStep1 };
+        contacts.Add(PlaneObstacle.Ground(restitution: 1));
+        world.AddConstraints(contacts);
+        world.Step(new RungeKutta4(), 0.02);
+        return (world, contacts);
+    }
 }

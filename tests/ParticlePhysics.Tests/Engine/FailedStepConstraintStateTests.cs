@@ -95,6 +95,51 @@ public class FailedStepConstraintStateTests
     }
 
     [Fact]
+    public void A_step_that_fails_after_the_contact_stage_leaves_no_pair_state_behind_for_its_retry()
+    {
+        // Found by the API fuzzer (seed 7, 100,000 operations): with particle collisions switched off after a step that
+        // had candidate pairs, a bounce requeued those old pairs, and a pair impact marked its pair as resting. A step
+        // that then failed (here a NaN force on a third particle, far away, caught by the divergence check after the
+        // contact stage) kept that mark, so its retry skipped the pair while the clean twin's same step collided it.
+        // Each step's pair lists are its own now: the failed step, the retry and the clean step agree.
+        var twins = new (ParticleWorld World, ContactSet Contacts, FaultyForce Faulty)[2];
+        for (var t = 0; t < 2; t++)
+        {
+            var world = new ParticleWorld();
+            world.AddParticle(new Vector3d(0, 0.15, 0), 1);
+            world.AddParticle(new Vector3d(0, 0.37, 0), 1);
+            world.AddParticle(new Vector3d(0, 5, 0), 1);
+            world.SetRadius(0, 0.1);
+            world.SetRadius(1, 0.1);
+            var faulty = new FaultyForce { Particle = 2 };
+            world.AddForce(faulty);
+            var contacts = new ContactSet { ParticleCollisions = true };
+            contacts.Add(PlaneObstacle.Ground(restitution: 1));
+            world.AddConstraints(contacts);
+            world.Step(new RungeKutta4(), 0.02);
+            Assert.Equal(1, contacts.CandidatePairCount);
+            contacts.ParticleCollisions = false;
+            world.SetVelocity(0, new Vector3d(0, -10, 0)); // bounces at 5 ms, rises through particle 1
+            twins[t] = (world, contacts, faulty);
+        }
+
+        var (failing, failingContacts, fault) = twins[0];
+        var (clean, cleanContacts, _) = twins[1];
+        var before = failing.State.ToArray();
+        fault.Arm(Fault.NaN);
+        Assert.Throws<SimulationDivergedException>(() => failing.Step(new RungeKutta4(), 0.02));
+        Assert.Equal(before, failing.State.ToArray());
+
+        fault.Arm(Fault.None);
+        failing.Step(new RungeKutta4(), 0.02);
+        clean.Step(new RungeKutta4(), 0.02);
+        Assert.Equal(clean.State.ToArray(), failing.State.ToArray());
+        Assert.Equal(cleanContacts.ImpactCount, failingContacts.ImpactCount);
+        Assert.Equal(cleanContacts.Impacts.ToArray(), failingContacts.Impacts.ToArray());
+        Assert.All(failingContacts.Impacts.ToArray(), impact => Assert.True(impact.WithObstacle));
+    }
+
+    [Fact]
     public void A_failed_frame_of_the_driver_leaves_the_impact_log_of_before_the_frame()
     {
         // Two fixed steps in one frame: the first logs particle 0's impact and is committed by the world, the second
