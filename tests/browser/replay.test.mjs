@@ -144,7 +144,19 @@ for (const c of cases.filter((c) => !c.plain)) {
     after(async () => { await page?.context().close(); });
 
     const rendersNow = () => page.evaluate(() => window.replay.renders);
-    const settled = async (before) => page.waitForFunction((n) => window.replay.renders > n, before, { timeout: 30_000 });
+    // Waits for a render after an action, then for the page to go idle: a render that was already due when the action
+    // began (the double-click that resets the view, say) can be the first one counted, and the picture kept then
+    // would miss the action (seen: a bounce kept at the time before the seek).
+    const settled = async (before) => {
+      await page.waitForFunction((n) => window.replay.renders > n, before, { timeout: 30_000 });
+      await page.evaluate(() => new Promise((done) => {
+        let seen = window.replay.renders, frames = 0;
+        const check = () => requestAnimationFrame(() => requestAnimationFrame(() => {
+          if (window.replay.renders === seen || ++frames > 120) done(); else { seen = window.replay.renders; check(); }
+        }));
+        check();
+      }));
+    };
     // Moves the slider as a user does: types a time (three decimals, as a range input keeps them), or presses End.
     const seekWithSlider = async (t) => {
       const before = await rendersNow();
@@ -235,7 +247,9 @@ for (const c of cases.filter((c) => !c.plain)) {
       assert.ok(await differing("before-orbit", "after-orbit") >= 20, "the view turned");
       assert.equal(await page.evaluate(() => window.replay.time), time, "orbiting leaves the time alone");
       assert.deepEqual(problems, []);
+      const beforeReset = await rendersNow();
       await page.dblclick("#view");   // back to the home view for the checks that follow
+      await settled(beforeReset);
     });
 
     if (c.scene) {
