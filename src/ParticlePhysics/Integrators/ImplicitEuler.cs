@@ -437,32 +437,22 @@ public sealed class ImplicitEuler : IStatefulIntegrator
                 continue;
             }
 
+            // M_i - J_ii in place, then its inverse by cofactors (Blocks3, the multigrid's too).
             var m = masses[i];
-            double a = m - blocks[o], bb = -blocks[o + 1], c = -blocks[o + 2];
-            double d = -blocks[o + 3], e = m - blocks[o + 4], f = -blocks[o + 5];
-            double g = -blocks[o + 6], hh = -blocks[o + 7], k = m - blocks[o + 8];
-            double c00 = (e * k) - (f * hh), c01 = (c * hh) - (bb * k), c02 = (bb * f) - (c * e);
-            double c10 = (f * g) - (d * k), c11 = (a * k) - (c * g), c12 = (c * d) - (a * f);
-            double c20 = (d * hh) - (e * g), c21 = (bb * g) - (a * hh), c22 = (a * e) - (bb * d);
-            var determinant = (a * c00) + (bb * c10) + (c * c20);
-            if (!(Math.Abs(determinant) > 0.0) || !DoubleChecks.IsFinite(determinant))
+            for (var k = 0; k < 9; k++)
+            {
+                blocks[o + k] = -blocks[o + k];
+            }
+
+            blocks[o] += m;
+            blocks[o + 4] += m;
+            blocks[o + 8] += m;
+            if (!Blocks3.Invert(blocks, o, blocks, o))
             {
                 // Degenerate block: fall back to plain Jacobi on the mass alone.
                 Array.Clear(blocks, o, 9);
                 blocks[o] = blocks[o + 4] = blocks[o + 8] = 1.0 / m;
-                continue;
             }
-
-            var s = 1.0 / determinant;
-            blocks[o] = c00 * s;
-            blocks[o + 1] = c01 * s;
-            blocks[o + 2] = c02 * s;
-            blocks[o + 3] = c10 * s;
-            blocks[o + 4] = c11 * s;
-            blocks[o + 5] = c12 * s;
-            blocks[o + 6] = c20 * s;
-            blocks[o + 7] = c21 * s;
-            blocks[o + 8] = c22 * s;
         }
     }
 
