@@ -19,8 +19,8 @@ namespace ParticlePhysics.Benchmarks;
 /// library step allocates nothing; exits 1 if not.</item>
 /// <item><c>stability [--n 64] [--integrators a,b] [--write] [--verbose]</c>: the largest stable dt of each
 /// integrator (<c>--dt X</c>: one trial at X instead of the search).</item>
-/// <item><c>profile [--n 128] [--seconds 20] [--integrator xpbd [--steps N] [--runner 2]]</c>: RK4 cloth steps (or xpbd
-/// frames) in a loop, for <c>perf record</c> or callgrind.</item>
+/// <item><c>profile [--n 128] [--seconds 20] [--integrator xpbd|implicit-euler [--steps N] [--runner 2] [--tolerance 1e-3]]</c>:
+/// RK4 cloth steps (or xpbd or implicit-Euler frames) in a loop, for <c>perf record</c> or callgrind.</item>
 /// <item><c>xpbd [--sizes 32,64,128,256] [--rounds 7] [--cores]</c>: a short side-by-side timing of the C xpbd and the
 /// library in one process, alternating (or, with <c>--cores</c>, one core against two), after a bit-for-bit check
 /// (<see cref="XpbdComparison"/>).</item>
@@ -192,6 +192,11 @@ internal static class Program
             return RunXpbdProfile(n, seconds, Option(args, "--steps"), Option(args, "--runner"));
         }
 
+        if (Option(args, "--integrator") is "implicit-euler")
+        {
+            return RunImplicitProfile(n, seconds, Option(args, "--steps"), Option(args, "--runner"), Option(args, "--tolerance"));
+        }
+
         var cloth = new ClothFixture(n);
         var rk4 = new RungeKutta4();
         var clock = Stopwatch.StartNew();
@@ -243,6 +248,51 @@ internal static class Program
         Console.WriteLine(string.Create(
             CultureInfo.InvariantCulture,
             $"n = {n}: {frames} xpbd frames, {perSecond * 1e3:F2} ms per simulated second, {perSecond * 1e9 / cloth.ProjectionsPerSecond:F2} ns per projection, checksum {cloth.Checksum():R}"));
+        return 0;
+    }
+
+    /// <summary>
+    /// Implicit Euler frames of 1/60 s from rest, a reset (and a cold solver) every simulated second, as
+    /// <c>ImplicitEulerBenchmarks.SimulatedSecond</c> runs them: for <c>--seconds</c> of wall time (for perf), or exactly
+    /// <c>--steps</c> frames (for callgrind: two run lengths, the difference is the frames' instructions); prints the
+    /// mean CG iterations per frame and a checksum of the state (the sum of its values), the same on any runner.
+    /// </summary>
+    private static int RunImplicitProfile(int n, double seconds, string? steps, string? runnerThreads, string? tolerance)
+    {
+        const int framesPerSecond = 60;
+        var cloth = new ClothFixture(n);
+        var implicitEuler = new ImplicitEuler
+        {
+            Tolerance = double.Parse(tolerance ?? "1e-3", CultureInfo.InvariantCulture),
+        };
+        using var runner = runnerThreads is null ? null : new Parallel.WorkerThreadRunner(int.Parse(runnerThreads, CultureInfo.InvariantCulture));
+        cloth.System.Runner = runner;
+        var fixedSteps = steps is null ? -1L : long.Parse(steps, CultureInfo.InvariantCulture);
+        var clock = Stopwatch.StartNew();
+        long frames = 0, iterations = 0;
+        while (fixedSteps >= 0 ? frames < fixedSteps : clock.Elapsed.TotalSeconds < seconds)
+        {
+            if (frames % framesPerSecond == 0)
+            {
+                cloth.Reset();
+                implicitEuler.ReadState(new double[] { 0 });
+            }
+
+            cloth.System.Step(implicitEuler, 1.0 / framesPerSecond);
+            iterations += implicitEuler.LastIterations;
+            frames++;
+        }
+
+        var perSecond = clock.Elapsed.TotalSeconds / Math.Max(1, frames) * framesPerSecond;
+        var checksum = 0.0;
+        foreach (var value in cloth.System.State)
+        {
+            checksum += value;
+        }
+
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"n = {n}: {frames} implicit-euler frames at tolerance {implicitEuler.Tolerance:R}, {perSecond * 1e3:F2} ms per simulated second, {(double)iterations / Math.Max(1, frames):F3} CG iterations per frame, checksum {checksum:R}"));
         return 0;
     }
 
