@@ -47,6 +47,32 @@ public interface ILinearizableSystem : ISecondOrderSystem
         UserForceTreatment userForces,
         Span<double> positionJacobianTimesVelocity);
 
+    /// <summary>
+    /// <see cref="AccumulateForces"/>, <see cref="Linearize"/> and <see cref="AddDiagonalBlocks"/> at the same state in
+    /// one call, with exactly their results: the forces at (x, v) are returned (valid until the next evaluation), J is
+    /// stored for the products that follow, (df/dx) v is added into <paramref name="positionJacobianTimesVelocity"/>
+    /// and J's diagonal blocks into <paramref name="diagonalBlocks"/>. What an implicit step needs first; a force that
+    /// can do the three in one pass (<see cref="IForceLinearization"/>) does, and the others are called three times.
+    /// </summary>
+    /// <param name="time">The time of the evaluation and the linearisation.</param>
+    /// <param name="positions">x, 3 values per particle.</param>
+    /// <param name="velocities">v, 3 values per particle.</param>
+    /// <param name="positionScale">a, the scale of df/dx in J.</param>
+    /// <param name="velocityScale">b, the scale of df/dv in J.</param>
+    /// <param name="userForces">How forces that supply no Jacobian of their own enter J.</param>
+    /// <param name="positionJacobianTimesVelocity">Receives (df/dx) v added to what it holds, 3 values per particle.</param>
+    /// <param name="diagonalBlocks">Receives J_ii added to what it holds, 9 values per particle (row-major).</param>
+    /// <returns>The forces, 3 values per particle, as <see cref="AccumulateForces"/> returns them.</returns>
+    ReadOnlySpan<double> AccumulateForcesAndLinearize(
+        double time,
+        ReadOnlySpan<double> positions,
+        ReadOnlySpan<double> velocities,
+        double positionScale,
+        double velocityScale,
+        UserForceTreatment userForces,
+        Span<double> positionJacobianTimesVelocity,
+        Span<double> diagonalBlocks);
+
     /// <summary>Adds J w into <paramref name="result"/> (3 values per particle each).</summary>
     void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result);
 

@@ -38,6 +38,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
     // The implicit stepper's linearisation (ILinearizableSystem): the generators linearised at the last Linearize,
     // and the finite-difference wrappers of those that supply no Jacobian of their own, kept while they are added.
     private readonly List<IForceJacobian> _linearized = new();
+    private readonly List<int> _linearizedSource = new(); // the index of each entry's generator, increasing
     private readonly Dictionary<IForceGenerator, FiniteDifferenceJacobian> _finiteDifference = new();
     private double[] _state = Array.Empty<double>();
     private double[] _masses = Array.Empty<double>();
@@ -404,6 +405,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
 
         _ = _finiteDifference.Remove(generator);
         _linearized.Clear(); // a later product must not reach a removed generator; the next Linearize rebuilds it
+        _linearizedSource.Clear();
         _unprojectedStale = true;
         _structureVersion++;
         return true;
@@ -833,22 +835,103 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
         UserForceTreatment userForces,
         Span<double> positionJacobianTimesVelocity)
     {
+        CheckLinearization(positions.Length, velocities.Length, positionJacobianTimesVelocity.Length);
+        CollectLinearized(userForces);
+        var view = new ParticleState(time, positions, velocities, Masses, InverseMasses, Runner);
+        for (var j = 0; j < _linearized.Count; j++)
+        {
+            _linearized[j].Linearize(view, positionScale, velocityScale, positionJacobianTimesVelocity);
+        }
+
+        _linearizedVersion = _structureVersion;
+    }
+
+    /// <inheritdoc />
+    /// <remarks>
+    /// Each generator in the order they were added: one that implements <see cref="IForceLinearization"/> in one pass,
+    /// the others by AddForces, then (when they enter J: <see cref="IForceJacobian"/>, or finite differences when
+    /// <paramref name="userForces"/> asks for it) Linearize and AddDiagonalBlocks; then the constraint forces. The
+    /// forces, (df/dx) v and the blocks are separate accumulators, each receiving the generators' terms in the same
+    /// order as the three separate calls, so the results are theirs to the last bit.
+    /// </remarks>
+    ReadOnlySpan<double> ILinearizableSystem.AccumulateForcesAndLinearize(
+        double time,
+        ReadOnlySpan<double> positions,
+        ReadOnlySpan<double> velocities,
+        double positionScale,
+        double velocityScale,
+        UserForceTreatment userForces,
+        Span<double> positionJacobianTimesVelocity,
+        Span<double> diagonalBlocks)
+    {
+        CheckLinearization(positions.Length, velocities.Length, positionJacobianTimesVelocity.Length);
+        if (diagonalBlocks.Length < 9 * _count)
+        {
+            throw new ArgumentException(
+                $"diagonalBlocks must hold 9 values per particle, {9 * _count}; it holds {diagonalBlocks.Length}.", nameof(diagonalBlocks));
+        }
+
+        CollectLinearized(userForces);
         var n = 3 * _count;
-        if (positions.Length != n || velocities.Length != n || positionJacobianTimesVelocity.Length != n)
+        var forces = _forces.AsSpan(0, n);
+        forces.Clear();
+        var view = new ParticleState(time, positions, velocities, Masses, InverseMasses, Runner);
+        var next = 0; // the next entry of _linearized: the generators' own Jacobians and wrappers, in generator order
+        for (var g = 0; g < _forceGenerators.Count; g++)
+        {
+            var generator = _forceGenerators[g];
+            var jacobian = next < _linearized.Count && _linearizedSource[next] == g ? _linearized[next++] : null;
+            if (jacobian is IForceLinearization fused && ReferenceEquals(fused, generator))
+            {
+                fused.AddForcesAndLinearize(in view, positionScale, velocityScale, forces, positionJacobianTimesVelocity, diagonalBlocks);
+                continue;
+            }
+
+            generator.AddForces(in view, forces);
+            if (jacobian is not null)
+            {
+                jacobian.Linearize(view, positionScale, velocityScale, positionJacobianTimesVelocity);
+                jacobian.AddDiagonalBlocks(diagonalBlocks);
+            }
+        }
+
+        for (var c = 0; c < _constraintForces.Count; c++)
+        {
+            _constraintForces[c].AddConstraintForces(in view, forces);
+        }
+
+        _linearizedVersion = _structureVersion;
+        return forces;
+    }
+
+    /// <summary>Checks the buffers of a linearisation against the world's size.</summary>
+    private void CheckLinearization(int positions, int velocities, int positionJacobianTimesVelocity)
+    {
+        var n = 3 * _count;
+        if (positions != n || velocities != n || positionJacobianTimesVelocity != n)
         {
             throw new ArgumentException(
                 $"positions, velocities and positionJacobianTimesVelocity must have {n} values each; got "
-                + $"{positions.Length}, {velocities.Length} and {positionJacobianTimesVelocity.Length}.");
+                + $"{positions}, {velocities} and {positionJacobianTimesVelocity}.");
         }
+    }
 
+    /// <summary>
+    /// The generators that enter J, in the order they were added: those that implement <see cref="IForceJacobian"/>,
+    /// and the others wrapped in finite differences when <paramref name="userForces"/> asks for it.
+    /// </summary>
+    private void CollectLinearized(UserForceTreatment userForces)
+    {
         _linearizedVersion = -1;
         _linearized.Clear();
+        _linearizedSource.Clear();
         for (var g = 0; g < _forceGenerators.Count; g++)
         {
             var generator = _forceGenerators[g];
             if (generator is IForceJacobian jacobian)
             {
                 _linearized.Add(jacobian);
+                _linearizedSource.Add(g);
             }
             else if (userForces == UserForceTreatment.FiniteDifference)
             {
@@ -859,16 +942,9 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
                 }
 
                 _linearized.Add(wrapper);
+                _linearizedSource.Add(g);
             }
         }
-
-        var view = new ParticleState(time, positions, velocities, Masses, InverseMasses, Runner);
-        for (var j = 0; j < _linearized.Count; j++)
-        {
-            _linearized[j].Linearize(view, positionScale, velocityScale, positionJacobianTimesVelocity);
-        }
-
-        _linearizedVersion = _structureVersion;
     }
 
     /// <inheritdoc />

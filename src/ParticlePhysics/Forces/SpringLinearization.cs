@@ -52,6 +52,61 @@ internal static unsafe class SpringLinearization
         y[2] = -((iso * dvz) + (along * linear[2]));
     }
 
+    /// <summary>
+    /// <see cref="Pair"/> and the spring's force in one evaluation of its direction: writes the linearisation into
+    /// <paramref name="linear"/>, df/dx (v_a - v_b) at end a into <paramref name="y"/>, and into
+    /// <paramref name="force"/> the vector (k (l - L) + c (v_a - v_b) . u) u that the force loop subtracts at end a and
+    /// adds at end b (zero when l = 0). Every value is computed by the same operations as in <see cref="Pair"/> and in
+    /// <see cref="SpringNetwork.AddForces"/>, so the bits are theirs.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void PairWithForce(
+        double* x, double* v, long a, long b, double* parameters, double positionScale, double velocityScale,
+        double* linear, double* y, double* force)
+    {
+        double k = parameters[0], restLength = parameters[1], c = parameters[2];
+        double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
+        double dvx = v[a] - v[b], dvy = v[a + 1] - v[b + 1], dvz = v[a + 2] - v[b + 2];
+        var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
+        if (lengthSquared == 0.0)
+        {
+            // As Pair, operation for operation (so that signed zeros agree too), and no force: the force loop adds a
+            // zero vector there.
+            var iso0 = restLength == 0.0 ? k : 0.0;
+            linear[0] = linear[1] = linear[2] = linear[4] = 0.0;
+            linear[3] = -positionScale * iso0;
+            var along0 = 0.0 * ((linear[0] * dvx) + (linear[1] * dvy) + (linear[2] * dvz));
+            y[0] = -((iso0 * dvx) + (along0 * linear[0]));
+            y[1] = -((iso0 * dvy) + (along0 * linear[1]));
+            y[2] = -((iso0 * dvz) + (along0 * linear[2]));
+            force[0] = force[1] = force[2] = 0.0;
+            return;
+        }
+
+        var length = Math.Sqrt(lengthSquared);
+        var inverse = 1.0 / length;
+        var transverse = Math.Max(0.0, 1.0 - (restLength * inverse));
+        double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
+        linear[0] = ux;
+        linear[1] = uy;
+        linear[2] = uz;
+        linear[3] = -positionScale * k * transverse;
+        linear[4] = -((positionScale * k * (1.0 - transverse)) + (velocityScale * c));
+        var axial = k * (1.0 - transverse);
+        var iso = k * transverse;
+        var closing = (ux * dvx) + (uy * dvy) + (uz * dvz);
+        var along = axial * closing;
+        y[0] = -((iso * dvx) + (along * ux));
+        y[1] = -((iso * dvy) + (along * uy));
+        y[2] = -((iso * dvz) + (along * uz));
+
+        // The force loop's closing speed is (dv . u) with the products the other way round: the same bits.
+        var magnitude = (k * (length - restLength)) + (c * closing);
+        force[0] = magnitude * ux;
+        force[1] = magnitude * uy;
+        force[2] = magnitude * uz;
+    }
+
     /// <summary>(s I + t u u^T)(w_a - w_b): the spring's share of J w at end a (end b gets its opposite).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static void Product(double* w, long a, long b, double* linear, double* y)

@@ -19,7 +19,7 @@ namespace ParticlePhysics.Forces;
 /// Choi and Ko 2002); the position derivative of the damping term, which is not symmetric and vanishes when the
 /// ends move together, is left out. Each linearised spring is stored as u and two scalars, s I + t u u^T.
 /// </remarks>
-public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundForce, IJacobianCouplings, ISpringElements
+public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundForce, IJacobianCouplings, IForceLinearization, ISpringElements
 {
     // Pair parameters: k, L, c. Anchored parameters: ax, ay, az, k, L, c.
     private const int PairStride = 3;
@@ -289,16 +289,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         in ParticleState state, double positionScale, double velocityScale, Span<double> positionJacobianTimesVelocity)
     {
         CheckSizes(state.Positions.Length, state.Velocities.Length, positionJacobianTimesVelocity.Length);
-        if (_linear.Length < LinearStride * _pairs.Count)
-        {
-            _linear = new double[LinearStride * _pairs.First.Length];
-        }
-
-        if (_anchoredLinear.Length < LinearStride * _anchored.Count)
-        {
-            _anchoredLinear = new double[LinearStride * _anchored.First.Length];
-        }
-
+        EnsureLinearStorage();
         _runner = state.Runner is { MaxParallelism: > 1 } runner && _pairs.Count >= ParallelThreshold ? runner : null;
         fixed (double* x = &MemoryMarshal.GetReference(state.Positions), v = &MemoryMarshal.GetReference(state.Velocities))
         fixed (double* into = positionJacobianTimesVelocity, p = _pairs.Parameters, lin = _linear)
@@ -329,8 +320,31 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             }
         }
 
-        var xr = state.Positions.ForReading();
-        var vr = state.Velocities.ForReading();
+        LinearizeAnchored(state.Positions, state.Velocities, positionScale, velocityScale, positionJacobianTimesVelocity);
+        _linearized.Record(_pairs.Count, _anchored.Count);
+    }
+
+    /// <summary>Sizes the linearisation's storage for the springs there are (5 values each).</summary>
+    private void EnsureLinearStorage()
+    {
+        if (_linear.Length < LinearStride * _pairs.Count)
+        {
+            _linear = new double[LinearStride * _pairs.First.Length];
+        }
+
+        if (_anchoredLinear.Length < LinearStride * _anchored.Count)
+        {
+            _anchoredLinear = new double[LinearStride * _anchored.First.Length];
+        }
+    }
+
+    /// <summary>Linearises the anchored springs and adds their (df/dx) v.</summary>
+    private void LinearizeAnchored(
+        ReadOnlySpan<double> positions, ReadOnlySpan<double> velocities, double positionScale, double velocityScale,
+        Span<double> positionJacobianTimesVelocity)
+    {
+        var xr = positions.ForReading();
+        var vr = velocities.ForReading();
         var r = _anchored.Parameters;
         for (var s = 0; s < _anchored.Count; s++)
         {
@@ -341,8 +355,79 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             AddPositionTerm(_anchoredLinear.AsSpan(LinearStride * s, LinearStride), k, iso,
                 vr[a], vr[a + 1], vr[a + 2], positionJacobianTimesVelocity, a, -1);
         }
+    }
 
+    /// <inheritdoc />
+    /// <remarks>
+    /// One pass over the springs where <see cref="AddForces"/>, <see cref="Linearize"/> and
+    /// <see cref="AddDiagonalBlocks"/> make three: each spring's length and direction are computed once and serve its
+    /// force, its linearisation and its blocks, with the same operations as those methods (the same bits).
+    /// </remarks>
+    public unsafe void AddForcesAndLinearize(
+        in ParticleState state,
+        double positionScale,
+        double velocityScale,
+        Span<double> forces,
+        Span<double> positionJacobianTimesVelocity,
+        Span<double> diagonalBlocks)
+    {
+        CheckSizes(state.Positions.Length, state.Velocities.Length, Math.Min(forces.Length, positionJacobianTimesVelocity.Length));
+        if (diagonalBlocks.Length < 9 * _system.Count)
+        {
+            throw new ArgumentException(
+                $"diagonalBlocks must hold 9 values per particle, {9 * _system.Count}; it holds {diagonalBlocks.Length}.", nameof(diagonalBlocks));
+        }
+
+        EnsureLinearStorage();
+        _runner = state.Runner is { MaxParallelism: > 1 } runner && _pairs.Count >= ParallelThreshold ? runner : null;
+
+        // Every pointer stays inside its array, as in AddForces and Linearize: the ends are below the particle count
+        // (checked when added), the buffers hold 3 (the blocks 9) values per particle (checked above), the linear
+        // storage 5 values per spring (sized above).
+        fixed (double* x = &MemoryMarshal.GetReference(state.Positions), v = &MemoryMarshal.GetReference(state.Velocities))
+        fixed (double* f = forces, into = positionJacobianTimesVelocity, d = diagonalBlocks, p = _pairs.Parameters, lin = _linear)
+        fixed (int* first = _pairs.First, second = _pairs.Second)
+        {
+            if (_runner is not null)
+            {
+                _parallel ??= new ParallelSpringForces();
+                _jacobian ??= new ParallelSpringJacobian();
+                _parallel.Incidence.Update(_pairs, _system.Count);
+                _jacobian.LinearizeWithForces(
+                    x, v, p, first, second, _pairs.Count, positionScale, velocityScale, lin, f, into, d, _parallel.Incidence, _runner);
+            }
+            else
+            {
+                var count = _pairs.Count;
+                var y = stackalloc double[6];
+                var spring = y + 3;
+                for (var s = 0; s < count; s++)
+                {
+                    long a = 3 * first[s], b = 3 * second[s];
+                    var q = lin + (LinearStride * s);
+                    SpringLinearization.PairWithForce(x, v, a, b, p + (PairStride * s), positionScale, velocityScale, q, y, spring);
+                    f[a] -= spring[0];
+                    f[a + 1] -= spring[1];
+                    f[a + 2] -= spring[2];
+                    f[b] += spring[0];
+                    f[b + 1] += spring[1];
+                    f[b + 2] += spring[2];
+                    into[a] += y[0];
+                    into[a + 1] += y[1];
+                    into[a + 2] += y[2];
+                    into[b] -= y[0];
+                    into[b + 1] -= y[1];
+                    into[b + 2] -= y[2];
+                    SpringLinearization.AddBlockToBoth(d + (9L * first[s]), d + (9L * second[s]), q);
+                }
+            }
+        }
+
+        // The anchored springs, each of the three in its own loop (they are few): the same calls as the separate methods.
+        AddAnchoredForces(state.Positions, state.Velocities, forces);
+        LinearizeAnchored(state.Positions, state.Velocities, positionScale, velocityScale, positionJacobianTimesVelocity);
         _linearized.Record(_pairs.Count, _anchored.Count);
+        AddAnchoredBlocks(diagonalBlocks);
     }
 
     /// <inheritdoc />
@@ -428,6 +513,12 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             }
         }
 
+        AddAnchoredBlocks(blocks);
+    }
+
+    /// <summary>Adds the anchored springs' diagonal blocks (their only block: the anchor does not move).</summary>
+    private void AddAnchoredBlocks(Span<double> blocks)
+    {
         for (var s = 0; s < _anchored.Count; s++)
         {
             var q = LinearStride * s;

@@ -256,13 +256,12 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         var runner = system.Runner is { MaxParallelism: > 1 } parallel ? parallel : null;
         var end = time + h;
 
-        // f0, and the linearisation: K v0 accumulates into jw, the diagonal blocks of h D + h^2 K into blocks.
-        system.AccumulateForces(end, x0, v0).CopyTo(f0);
-        CheckFinite(f0, inverseMasses, time, end, "the force on particle {0} is {1}: a force generator wrote a value that is not finite");
+        // f0, and the linearisation, in one call (one pass over a spring network): K v0 accumulates into jw, the
+        // diagonal blocks of h D + h^2 K into blocks.
         Array.Clear(jw, 0, n);
         Array.Clear(blocks, 0, blocks.Length);
-        system.Linearize(end, x0, v0, h * h, h, UserForces, jw);
-        system.AddDiagonalBlocks(blocks);
+        system.AccumulateForcesAndLinearize(end, x0, v0, h * h, h, UserForces, jw, blocks).CopyTo(f0);
+        CheckFinite(f0, inverseMasses, time, end, "the force on particle {0} is {1}: a force generator wrote a value that is not finite");
 
         // b = h (f0 + h K v0), filtered; block Jacobi P = inverse of the blocks of M - (h D + h^2 K); the multigrid's
         // coarse levels from the same linearisation.
