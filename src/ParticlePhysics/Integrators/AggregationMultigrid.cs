@@ -1,4 +1,5 @@
 using System;
+using System.Runtime.CompilerServices;
 using System.Collections.Generic;
 using ParticlePhysics.Parallel;
 
@@ -117,40 +118,77 @@ internal sealed unsafe class AggregationMultigrid
     }
 
     /// <summary>
-    /// z = D^-1 r + P B_c P^T r, with <paramref name="fineInverse"/> the inverted fine blocks (zero on pinned
-    /// particles); returns r . z, summed in chunk order.
+    /// The first half of z = D^-1 r + P B_c P^T r, fused with the iteration's update when <paramref name="update"/>:
+    /// p = z + beta p, s = w + beta s, dv += alpha p, r -= alpha s on the conjugate gradients' vectors, then B_1 = P^T r
+    /// (free particles only) and level 1's pre-smoothing from zero, X_1 = D_1^-1 B_1, in one pass over the aggregates'
+    /// members. Returns r . r after the update (0 without one), summed in chunk order.
     /// </summary>
-    public double Apply(double[] fineInverse, double[] r, double[] z, Span<double> inverseMasses, IParallelRunner? runner)
+    public double BeginApply(ConjugateGradientPasses cg, double alpha, double beta, bool update, IParallelRunner? runner)
+    {
+        var first = CheckBound(cg);
+        fixed (double* r = cg.R, z = cg.Z, dv = cg.Dv, p = cg.P, s = cg.S, w = cg.W, inv = cg.Blocks, masses = cg.InverseMasses)
+        fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members)
+        fixed (double* coarseB = first.B, coarseX = first.X, coarseInverse = first.Inverse)
+        {
+            _fine.Set(r, z, dv, p, s, w, inv, masses, aggregate, memberStart, members, first.Count);
+            _fine.SetCoarse(coarseB, coarseX, coarseInverse, null, smoothed: _levels.Length > 1);
+            _fine.Alpha = alpha;
+            _fine.Beta = beta;
+            _fine.Operation = update ? FinePasses.UpdateAndRestrict : FinePasses.Restrict;
+            Run(runner, _fine);
+        }
+
+        return update ? _fine.Sum() : 0.0;
+    }
+
+    /// <summary>
+    /// The second half: the V-cycle below level 1, then level 1's post-smoothing fused with the fine level's
+    /// z = D^-1 r + P X_1 (zero on pinned particles). Returns r . z, summed in chunk order.
+    /// </summary>
+    public double FinishApply(ConjugateGradientPasses cg, IParallelRunner? runner)
+    {
+        var first = CheckBound(cg);
+        Cycle(0, runner);
+        var smoothed = _levels.Length > 1;
+        fixed (double* r = cg.R, z = cg.Z, dv = cg.Dv, p = cg.P, s = cg.S, w = cg.W, inv = cg.Blocks, masses = cg.InverseMasses)
+        fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members)
+        fixed (double* coarseB = first.B, coarseX = first.X, coarseInverse = first.Inverse, smoothedX = first.Smoothed)
+        {
+            _fine.Set(r, z, dv, p, s, w, inv, masses, aggregate, memberStart, members, first.Count);
+            _fine.SetCoarse(coarseB, coarseX, coarseInverse, smoothed ? smoothedX : null, smoothed);
+            _fine.Operation = FinePasses.Prolong;
+            if (smoothed)
+            {
+                first.BindPostSmoothing(_levels[1]);
+            }
+
+            _fine.Level = smoothed ? first : null;
+            Run(runner, _fine);
+            _fine.Level = null;
+        }
+
+        if (smoothed)
+        {
+            first.SwapSmoothed();
+        }
+
+        return _fine.Sum();
+    }
+
+    /// <summary>The first level, after checking that the conjugate gradients' vectors cover the hierarchy's particles.</summary>
+    private Level CheckBound(ConjugateGradientPasses cg)
     {
         // The fine passes run their pointers over the particles of the hierarchy: every array must cover them.
-        var particles = inverseMasses.Length;
-        if (particles != _particles || r.Length < 3L * particles || z.Length < 3L * particles || fineInverse.Length < 9L * particles)
+        var n = 3L * _particles;
+        if (_levels.Length == 0 || cg.Particles != _particles || cg.InverseMasses.Length < _particles || cg.R.Length < n
+            || cg.Z.Length < n || cg.Dv.Length < n || cg.P.Length < n || cg.S.Length < n || cg.W.Length < n
+            || cg.Blocks.Length < 3 * n)
         {
             throw new InvalidOperationException(
-                $"The multigrid was set up for {_particles} particles; it was applied to {particles}, or to vectors shorter than theirs.");
+                $"The multigrid was set up for {_particles} particles; it was applied to {cg.Particles}, or to vectors shorter than theirs.");
         }
 
-        var first = _levels[0];
-        fixed (double* rp = r, zp = z, inv = fineInverse, w = inverseMasses)
-        fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members)
-        {
-            fixed (double* coarseB = first.B)
-            {
-                _fine.Set(rp, zp, inv, w, coarseB, null, aggregate, memberStart, members, inverseMasses.Length, first.Count);
-                _fine.Operation = FinePasses.Restrict;
-                Run(runner, _fine);
-            }
-
-            Cycle(0, runner);
-            fixed (double* coarseX = first.X) // (after the cycle: a level's X buffer changes at each post-smoothing)
-            {
-                _fine.Set(rp, zp, inv, w, null, coarseX, aggregate, memberStart, members, inverseMasses.Length, first.Count);
-                _fine.Operation = FinePasses.JacobiAndProlong;
-                Run(runner, _fine);
-            }
-
-            return _fine.Sum();
-        }
+        return _levels[0];
     }
 
     private static void Run(IParallelRunner? runner, IParallelWork work)
@@ -167,7 +205,12 @@ internal sealed unsafe class AggregationMultigrid
         }
     }
 
-    /// <summary>One V-cycle on coarse level l: X ~ A_l^-1 B.</summary>
+    /// <summary>
+    /// One V-cycle on coarse level l, X ~ A_l^-1 B, from a level whose pre-smoothing from zero, X = D^-1 B, is done (the
+    /// pass above it did it as it restricted): the residual restricted to the next level (and the next level's own
+    /// pre-smoothing) in one pass, the cycle below, then the post-smoothing X += P X_next, X += D^-1 (B - A X) in one
+    /// pass. Level 1's post-smoothing is left to <see cref="FinishApply"/>, which fuses it with the fine level.
+    /// </summary>
     private void Cycle(int l, IParallelRunner? runner)
     {
         var level = _levels[l];
@@ -178,9 +221,12 @@ internal sealed unsafe class AggregationMultigrid
         }
 
         var next = _levels[l + 1];
-        level.PreSmoothAndRestrict(next, runner);
+        level.RestrictResidual(next, smoothNext: l + 2 < _levels.Length, runner);
         Cycle(l + 1, runner);
-        level.ProlongAndPostSmooth(next, runner);
+        if (l > 0)
+        {
+            level.PostSmooth(next, runner);
+        }
     }
 
     private bool SameCouplings(ILinearizableSystem system, int count)
@@ -427,42 +473,71 @@ internal sealed unsafe class AggregationMultigrid
         _levels = levels.ToArray();
     }
 
-    /// <summary>The fine-level passes of <see cref="Apply"/>, in fixed chunks.</summary>
+    /// <summary>
+    /// The fine-level passes of <see cref="BeginApply"/> and <see cref="FinishApply"/>, in fixed chunks of level-1
+    /// aggregates, each visiting the members of its aggregates: restriction (after the iteration's update, or alone)
+    /// with level 1's pre-smoothing, and level 1's post-smoothing with the prolongation into z.
+    /// </summary>
     private sealed class FinePasses : IParallelWork
     {
         public const int Restrict = 0;
-        public const int JacobiAndProlong = 1;
+        public const int UpdateAndRestrict = 1;
+        public const int Prolong = 2;
 
         private readonly double[] _partial = new double[Chunks];
         private double* _r;
         private double* _z;
+        private double* _dv;
+        private double* _p;
+        private double* _s;
+        private double* _w;
         private double* _inverse;
         private double* _inverseMasses;
         private double* _coarseB;
         private double* _coarseX;
+        private double* _coarseInverse;
+        private double* _smoothedX;
+        private bool _smoothed;
         private int* _aggregate;
         private int* _memberStart;
         private int* _members;
-        private int _particles;
         private int _aggregates;
 
         public int Operation { get; set; }
 
+        public double Alpha { get; set; }
+
+        public double Beta { get; set; }
+
+        /// <summary>Level 1 when its post-smoothing is fused into the prolongation (bound to its next level), else null.</summary>
+        public Level? Level { get; set; }
+
         public void Set(
-            double* r, double* z, double* inverse, double* inverseMasses, double* coarseB, double* coarseX,
-            int* aggregate, int* memberStart, int* members, int particles, int aggregates)
+            double* r, double* z, double* dv, double* p, double* s, double* w, double* inverse, double* inverseMasses,
+            int* aggregate, int* memberStart, int* members, int aggregates)
         {
             _r = r;
             _z = z;
+            _dv = dv;
+            _p = p;
+            _s = s;
+            _w = w;
             _inverse = inverse;
             _inverseMasses = inverseMasses;
-            _coarseB = coarseB;
-            _coarseX = coarseX;
             _aggregate = aggregate;
             _memberStart = memberStart;
             _members = members;
-            _particles = particles;
             _aggregates = aggregates;
+        }
+
+        /// <summary>Level 1's B, X and inverted blocks; where its post-smoothing writes; whether it is smoothed (not the coarsest).</summary>
+        public void SetCoarse(double* coarseB, double* coarseX, double* coarseInverse, double* smoothedX, bool smoothed)
+        {
+            _coarseB = coarseB;
+            _coarseX = coarseX;
+            _coarseInverse = coarseInverse;
+            _smoothedX = smoothedX;
+            _smoothed = smoothed;
         }
 
         public double Sum()
@@ -478,60 +553,104 @@ internal sealed unsafe class AggregationMultigrid
 
         public void Execute(int chunk, int chunkCount)
         {
-            if (Operation == Restrict)
+            var (begin, end) = Chunk.Range(chunk, chunkCount, _aggregates);
+            var sum = 0.0;
+            if (Operation == Prolong)
             {
-                // B_I = sum of r_i over the free members of aggregate I, in increasing i.
-                var (begin, end) = Chunk.Range(chunk, chunkCount, _aggregates);
                 for (var a = begin; a < end; a++)
                 {
-                    double bx = 0.0, by = 0.0, bz = 0.0;
-                    for (var m = _memberStart[a]; m < _memberStart[a + 1]; m++)
+                    // X_1 of this aggregate after its post-smoothing (or as the coarsest solve left it), then
+                    // z_i = D_i^-1 r_i + X_1[a] on its free members, 0 on pinned ones; the chunk's share of r . z.
+                    double* x;
+                    if (Level is { } level)
                     {
-                        var i = _members[m];
+                        x = _smoothedX + (3L * a);
+                        level.PostSmoothRow(a, x);
+                    }
+                    else
+                    {
+                        x = _coarseX + (3L * a);
+                    }
+
+                    for (var k = _memberStart[a]; k < _memberStart[a + 1]; k++)
+                    {
+                        var i = _members[k];
+                        double* ri = _r + (3L * i), zi = _z + (3L * i), m = _inverse + (9L * i);
                         if (_inverseMasses[i] == 0.0)
                         {
+                            zi[0] = zi[1] = zi[2] = 0.0;
                             continue;
                         }
 
-                        var ri = _r + (3L * i);
-                        bx += ri[0];
-                        by += ri[1];
-                        bz += ri[2];
+                        double rx = ri[0], ry = ri[1], rzz = ri[2];
+                        var zx = (m[0] * rx) + (m[1] * ry) + (m[2] * rzz) + x[0];
+                        var zy = (m[3] * rx) + (m[4] * ry) + (m[5] * rzz) + x[1];
+                        var zz = (m[6] * rx) + (m[7] * ry) + (m[8] * rzz) + x[2];
+                        zi[0] = zx;
+                        zi[1] = zy;
+                        zi[2] = zz;
+                        sum += (rx * zx) + (ry * zy) + (rzz * zz);
                     }
-
-                    var b = _coarseB + (3L * a);
-                    b[0] = bx;
-                    b[1] = by;
-                    b[2] = bz;
                 }
 
+                _partial[chunk] = sum;
                 return;
             }
 
-            // z_i = D_i^-1 r_i + X_agg(i) on free particles, 0 on pinned ones; the chunk's share of r . z.
-            var (first, last) = Chunk.Range(chunk, chunkCount, _particles);
-            var rz = 0.0;
-            for (var i = first; i < last; i++)
+            var update = Operation == UpdateAndRestrict;
+            for (var a = begin; a < end; a++)
             {
-                double* ri = _r + (3L * i), zi = _z + (3L * i), m = _inverse + (9L * i);
-                if (_inverseMasses[i] == 0.0)
+                // B_I = sum of r_i over the free members of aggregate I, in increasing member order (after each member's
+                // update when there is one), then X_I = D_I^-1 B_I.
+                double bx = 0.0, by = 0.0, bz = 0.0;
+                for (var m = _memberStart[a]; m < _memberStart[a + 1]; m++)
                 {
-                    zi[0] = zi[1] = zi[2] = 0.0;
-                    continue;
+                    var i = _members[m];
+                    var ri = _r + (3L * i);
+                    if (update)
+                    {
+                        var o = 3L * i;
+                        double r0 = UpdateComponent(o), r1 = UpdateComponent(o + 1), r2 = UpdateComponent(o + 2);
+                        sum += r0 * r0;
+                        sum += r1 * r1;
+                        sum += r2 * r2;
+                    }
+
+                    if (_inverseMasses[i] == 0.0)
+                    {
+                        continue;
+                    }
+
+                    bx += ri[0];
+                    by += ri[1];
+                    bz += ri[2];
                 }
 
-                double rx = ri[0], ry = ri[1], rzz = ri[2];
-                var x = _coarseX + (3L * _aggregate[i]);
-                var zx = (m[0] * rx) + (m[1] * ry) + (m[2] * rzz) + x[0];
-                var zy = (m[3] * rx) + (m[4] * ry) + (m[5] * rzz) + x[1];
-                var zz = (m[6] * rx) + (m[7] * ry) + (m[8] * rzz) + x[2];
-                zi[0] = zx;
-                zi[1] = zy;
-                zi[2] = zz;
-                rz += (rx * zx) + (ry * zy) + (rzz * zz);
+                var b = _coarseB + (3L * a);
+                b[0] = bx;
+                b[1] = by;
+                b[2] = bz;
+                if (_smoothed)
+                {
+                    Blocks3.Multiply(_coarseInverse + (9L * a), b, _coarseX + (3L * a));
+                }
             }
 
-            _partial[chunk] = rz;
+            _partial[chunk] = sum;
+        }
+
+        /// <summary>p = z + beta p, s = w + beta s, dv += alpha p, r -= alpha s for one component; returns the new r.</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private double UpdateComponent(long k)
+        {
+            var p = _z[k] + (Beta * _p[k]);
+            _p[k] = p;
+            var s = _w[k] + (Beta * _s[k]);
+            _s[k] = s;
+            _dv[k] += Alpha * p;
+            var r = _r[k] - (Alpha * s);
+            _r[k] = r;
+            return r;
         }
     }
 
@@ -707,22 +826,20 @@ internal sealed unsafe class AggregationMultigrid
     /// </summary>
     private sealed class Level : IParallelWork
     {
-        private const int JacobiFromZero = 0;
-        private const int ResidualPass = 1;
-        private const int RestrictPass = 2;
-        private const int ProlongPass = 3;
-        private const int PostSmoothPass = 4;
+        private const int ResidualRestrictPass = 0;
+        private const int PostSmoothPass = 1;
 
         // Below this many rows a level's passes stay on the calling thread: waking the workers would cost more.
         private const int ParallelRows = 1024;
 
         private readonly int[] _rowStart;
         private readonly int[] _column;
-        private double[] _residual;
+        private double[] _smoothed; // where a post-smoothing writes the new X (the rows still to come read the old one)
         private int[] _nextAggregate = Array.Empty<int>();
         private int[] _nextMemberStart = Array.Empty<int>();
         private int[] _nextMembers = Array.Empty<int>();
         private Level? _next;
+        private bool _smoothNext;
         private int _operation;
         private int _passCount;
         private int[] _nextTarget = Array.Empty<int>();
@@ -738,7 +855,7 @@ internal sealed unsafe class AggregationMultigrid
             Inverse = new double[9 * Count];
             B = new double[3 * Count];
             X = new double[3 * Count];
-            _residual = new double[3 * Count];
+            _smoothed = new double[3 * Count];
         }
 
         public int Count { get; }
@@ -751,6 +868,9 @@ internal sealed unsafe class AggregationMultigrid
         public double[] B { get; }
 
         public double[] X { get; private set; }
+
+        /// <summary>The buffer a post-smoothing writes into; <see cref="SwapSmoothed"/> makes it <see cref="X"/>.</summary>
+        public double[] Smoothed => _smoothed;
 
         /// <summary>True when block <paramref name="target"/> of <see cref="Values"/> lies in rows [begin, end).</summary>
         public bool InRows(int target, int begin, int end) =>
@@ -833,119 +953,135 @@ internal sealed unsafe class AggregationMultigrid
             }
         }
 
-        /// <summary>X = D^-1 B (the pre-smoothing sweep from zero), then the next level's B = P^T (B - A X).</summary>
-        public void PreSmoothAndRestrict(Level next, IParallelRunner? runner)
+        /// <summary>
+        /// The next level's B = P^T (B - A X), with this level's X = D^-1 B already done, and when
+        /// <paramref name="smoothNext"/> the next level's own pre-smoothing from zero, X_next = D_next^-1 B_next: one
+        /// pass over the next level's aggregates, each summing its members' residual rows in increasing member order.
+        /// </summary>
+        public void RestrictResidual(Level next, bool smoothNext, IParallelRunner? runner)
         {
             _next = next;
-            RunPass(JacobiFromZero, Count, runner);
-            RunPass(ResidualPass, Count, runner);
-            RunPass(RestrictPass, next.Count, runner);
+            _smoothNext = smoothNext;
+            RunPass(ResidualRestrictPass, next.Count, runner);
         }
 
-        /// <summary>X += P X_next, then the post-smoothing sweep X += D^-1 (B - A X).</summary>
-        public void ProlongAndPostSmooth(Level next, IParallelRunner? runner)
+        /// <summary>The post-smoothing X' = X + P X_next, then X' + D^-1 (B - A X'), in one pass (X' formed on the fly).</summary>
+        public void PostSmooth(Level next, IParallelRunner? runner)
         {
             _next = next;
-            RunPass(ProlongPass, Count, runner);
-            RunPass(PostSmoothPass, Count, runner); // writes the new X into the residual buffer: swap them
-            (X, _residual) = (_residual, X);
+            RunPass(PostSmoothPass, Count, runner);
+            SwapSmoothed();
+        }
+
+        /// <summary>Binds the level below for <see cref="PostSmoothRow"/>.</summary>
+        public void BindPostSmoothing(Level next) => _next = next;
+
+        /// <summary>Makes the buffer the post-smoothing wrote into this level's X.</summary>
+        public void SwapSmoothed() => (X, _smoothed) = (_smoothed, X);
+
+        /// <summary>Row i of the post-smoothing (see <see cref="PostSmooth"/>) into <paramref name="output"/> (3 values).</summary>
+        public void PostSmoothRow(int i, double* output)
+        {
+            fixed (double* b = B, x = X, inverse = Inverse, values = Values, nextX = _next!.X)
+            fixed (int* rowStart = _rowStart, column = _column, aggregate = _nextAggregate)
+            {
+                PostSmoothRowCore(i, values, rowStart, column, b, x, nextX, aggregate, inverse, output);
+            }
+        }
+
+        /// <summary>
+        /// With X' = X + P X_next: output = X'_i + D_i^-1 (B_i - sum_j A_ij X'_j), the neighbours' X' formed on the fly
+        /// from X and X_next (neither is written during the pass).
+        /// </summary>
+        private void PostSmoothRowCore(
+            int i, double* values, int* rowStart, int* column, double* b, double* x, double* nextX, int* aggregate,
+            double* inverse, double* output)
+        {
+            double* d = values + (9L * i), xi = x + (3L * i), ci = nextX + (3L * aggregate[i]);
+            double x0 = xi[0] + ci[0], x1 = xi[1] + ci[1], x2 = xi[2] + ci[2];
+            var bi = b + (3L * i);
+            var r0 = bi[0] - ((d[0] * x0) + (d[1] * x1) + (d[2] * x2));
+            var r1 = bi[1] - ((d[3] * x0) + (d[4] * x1) + (d[5] * x2));
+            var r2 = bi[2] - ((d[6] * x0) + (d[7] * x1) + (d[8] * x2));
+            for (var k = rowStart[i]; k < rowStart[i + 1]; k++)
+            {
+                var j = column[k];
+                double* m = values + (9L * (Count + k)), xj = x + (3L * j), cj = nextX + (3L * aggregate[j]);
+                double y0 = xj[0] + cj[0], y1 = xj[1] + cj[1], y2 = xj[2] + cj[2];
+                r0 -= (m[0] * y0) + (m[1] * y1) + (m[2] * y2);
+                r1 -= (m[3] * y0) + (m[4] * y1) + (m[5] * y2);
+                r2 -= (m[6] * y0) + (m[7] * y1) + (m[8] * y2);
+            }
+
+            var w = inverse + (9L * i);
+            output[0] = x0 + ((w[0] * r0) + (w[1] * r1) + (w[2] * r2));
+            output[1] = x1 + ((w[3] * r0) + (w[4] * r1) + (w[5] * r2));
+            output[2] = x2 + ((w[6] * r0) + (w[7] * r1) + (w[8] * r2));
         }
 
         public void Execute(int chunk, int chunkCount)
         {
             var (begin, end) = Chunk.Range(chunk, chunkCount, _passCount);
-            fixed (double* b = B, x = X, r = _residual, inverse = Inverse, values = Values)
+            fixed (double* b = B, x = X, smoothed = _smoothed, inverse = Inverse, values = Values)
             fixed (int* rowStart = _rowStart, column = _column)
+            fixed (double* nextB = _next!.B, nextX = _next.X, nextInverse = _next.Inverse)
+            fixed (int* aggregate = _nextAggregate, start = _nextMemberStart, members = _nextMembers)
             {
-                switch (_operation)
+                if (_operation == PostSmoothPass)
                 {
-                    case JacobiFromZero:
-                        Blocks3.MultiplyAll(inverse + (9L * begin), b + (3L * begin), x + (3L * begin), end - begin);
-                        break;
-                    case ResidualPass:
-                    case PostSmoothPass:
-                        for (var i = begin; i < end; i++)
-                        {
-                            double* d = values + (9L * i), xi = x + (3L * i);
-                            double x0 = xi[0], x1 = xi[1], x2 = xi[2];
-                            var bi = b + (3L * i);
-                            var r0 = bi[0] - ((d[0] * x0) + (d[1] * x1) + (d[2] * x2));
-                            var r1 = bi[1] - ((d[3] * x0) + (d[4] * x1) + (d[5] * x2));
-                            var r2 = bi[2] - ((d[6] * x0) + (d[7] * x1) + (d[8] * x2));
-                            for (var k = rowStart[i]; k < rowStart[i + 1]; k++)
-                            {
-                                double* m = values + (9L * (Count + k)), xj = x + (3L * column[k]);
-                                double y0 = xj[0], y1 = xj[1], y2 = xj[2];
-                                r0 -= (m[0] * y0) + (m[1] * y1) + (m[2] * y2);
-                                r1 -= (m[3] * y0) + (m[4] * y1) + (m[5] * y2);
-                                r2 -= (m[6] * y0) + (m[7] * y1) + (m[8] * y2);
-                            }
+                    for (var i = begin; i < end; i++)
+                    {
+                        PostSmoothRowCore(i, values, rowStart, column, b, x, nextX, aggregate, inverse, smoothed + (3L * i));
+                    }
 
-                            var ri = r + (3L * i);
-                            if (_operation == ResidualPass)
-                            {
-                                ri[0] = r0;
-                                ri[1] = r1;
-                                ri[2] = r2;
-                            }
-                            else
-                            {
-                                // X + D^-1 (B - A X), into the other buffer: the rows still to come read the old X.
-                                var w = inverse + (9L * i);
-                                ri[0] = x0 + ((w[0] * r0) + (w[1] * r1) + (w[2] * r2));
-                                ri[1] = x1 + ((w[3] * r0) + (w[4] * r1) + (w[5] * r2));
-                                ri[2] = x2 + ((w[6] * r0) + (w[7] * r1) + (w[8] * r2));
-                            }
+                    return;
+                }
+
+                for (var a = begin; a < end; a++)
+                {
+                    double b0 = 0.0, b1 = 0.0, b2 = 0.0;
+                    for (var k = start[a]; k < start[a + 1]; k++)
+                    {
+                        // The residual row of member i: B_i - A_i X.
+                        var i = members[k];
+                        double* d = values + (9L * i), xi = x + (3L * i);
+                        double x0 = xi[0], x1 = xi[1], x2 = xi[2];
+                        var bi = b + (3L * i);
+                        var r0 = bi[0] - ((d[0] * x0) + (d[1] * x1) + (d[2] * x2));
+                        var r1 = bi[1] - ((d[3] * x0) + (d[4] * x1) + (d[5] * x2));
+                        var r2 = bi[2] - ((d[6] * x0) + (d[7] * x1) + (d[8] * x2));
+                        for (var e = rowStart[i]; e < rowStart[i + 1]; e++)
+                        {
+                            double* m = values + (9L * (Count + e)), xj = x + (3L * column[e]);
+                            double y0 = xj[0], y1 = xj[1], y2 = xj[2];
+                            r0 -= (m[0] * y0) + (m[1] * y1) + (m[2] * y2);
+                            r1 -= (m[3] * y0) + (m[4] * y1) + (m[5] * y2);
+                            r2 -= (m[6] * y0) + (m[7] * y1) + (m[8] * y2);
                         }
 
-                        break;
-                    case RestrictPass:
-                        fixed (double* nextB = _next!.B)
-                        fixed (int* start = _nextMemberStart, members = _nextMembers)
-                        {
-                            for (var a = begin; a < end; a++)
-                            {
-                                double b0 = 0.0, b1 = 0.0, b2 = 0.0;
-                                for (var k = start[a]; k < start[a + 1]; k++)
-                                {
-                                    var ri = r + (3L * members[k]);
-                                    b0 += ri[0];
-                                    b1 += ri[1];
-                                    b2 += ri[2];
-                                }
+                        b0 += r0;
+                        b1 += r1;
+                        b2 += r2;
+                    }
 
-                                var bi = nextB + (3L * a);
-                                bi[0] = b0;
-                                bi[1] = b1;
-                                bi[2] = b2;
-                            }
-                        }
-
-                        break;
-                    default:
-                        fixed (double* nextX = _next!.X)
-                        fixed (int* aggregate = _nextAggregate)
-                        {
-                            for (var i = begin; i < end; i++)
-                            {
-                                double* xi = x + (3L * i), ci = nextX + (3L * aggregate[i]);
-                                xi[0] += ci[0];
-                                xi[1] += ci[1];
-                                xi[2] += ci[2];
-                            }
-                        }
-
-                        break;
+                    var nb = nextB + (3L * a);
+                    nb[0] = b0;
+                    nb[1] = b1;
+                    nb[2] = b2;
+                    if (_smoothNext)
+                    {
+                        Blocks3.Multiply(nextInverse + (9L * a), nb, nextX + (3L * a));
+                    }
                 }
             }
         }
 
-        /// <summary>Runs a pass over <paramref name="count"/> rows in <see cref="Chunks"/> chunks: on the runner for large levels.</summary>
+        /// <summary>Runs a pass over <paramref name="count"/> items in <see cref="Chunks"/> chunks: on the runner for large levels.</summary>
         private void RunPass(int operation, int count, IParallelRunner? runner)
         {
             _operation = operation;
             _passCount = count;
-            if (runner is not null && Count >= ParallelRows)
+            if (runner is { MaxParallelism: > 1 } && Count >= ParallelRows)
             {
                 runner.Run(this, Chunks);
                 return;

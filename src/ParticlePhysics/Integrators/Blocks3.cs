@@ -1,4 +1,5 @@
 using System;
+using System.Runtime.CompilerServices;
 
 namespace ParticlePhysics.Integrators;
 
@@ -8,9 +9,26 @@ internal static unsafe class Blocks3
     /// <summary>Writes the inverse of the block at a[o] into inverse[p] by cofactors; false if it is singular or not finite.</summary>
     public static bool Invert(double[] a, int o, double[] inverse, int p)
     {
-        double m00 = a[o], m01 = a[o + 1], m02 = a[o + 2];
-        double m10 = a[o + 3], m11 = a[o + 4], m12 = a[o + 5];
-        double m20 = a[o + 6], m21 = a[o + 7], m22 = a[o + 8];
+        if (o < 0 || p < 0 || a.Length - 9 < o || inverse.Length - 9 < p)
+        {
+            throw new ArgumentOutOfRangeException(nameof(o), "A 3 x 3 block needs 9 values from its offset.");
+        }
+
+        fixed (double* source = a, target = inverse)
+        {
+            return Invert(source + o, target + p);
+        }
+    }
+
+    /// <summary>
+    /// Writes the inverse of the block at <paramref name="a"/> into <paramref name="inverse"/> by cofactors (the two may
+    /// be the same block: every value is read before any is written); false if it is singular or not finite.
+    /// </summary>
+    public static bool Invert(double* a, double* inverse)
+    {
+        double m00 = a[0], m01 = a[1], m02 = a[2];
+        double m10 = a[3], m11 = a[4], m12 = a[5];
+        double m20 = a[6], m21 = a[7], m22 = a[8];
         double c00 = (m11 * m22) - (m12 * m21), c01 = (m02 * m21) - (m01 * m22), c02 = (m01 * m12) - (m02 * m11);
         double c10 = (m12 * m20) - (m10 * m22), c11 = (m00 * m22) - (m02 * m20), c12 = (m02 * m10) - (m00 * m12);
         double c20 = (m10 * m21) - (m11 * m20), c21 = (m01 * m20) - (m00 * m21), c22 = (m00 * m11) - (m01 * m10);
@@ -21,15 +39,15 @@ internal static unsafe class Blocks3
         }
 
         var s = 1.0 / determinant;
-        inverse[p] = c00 * s;
-        inverse[p + 1] = c01 * s;
-        inverse[p + 2] = c02 * s;
-        inverse[p + 3] = c10 * s;
-        inverse[p + 4] = c11 * s;
-        inverse[p + 5] = c12 * s;
-        inverse[p + 6] = c20 * s;
-        inverse[p + 7] = c21 * s;
-        inverse[p + 8] = c22 * s;
+        inverse[0] = c00 * s;
+        inverse[1] = c01 * s;
+        inverse[2] = c02 * s;
+        inverse[3] = c10 * s;
+        inverse[4] = c11 * s;
+        inverse[5] = c12 * s;
+        inverse[6] = c20 * s;
+        inverse[7] = c21 * s;
+        inverse[8] = c22 * s;
         return true;
     }
 
@@ -45,6 +63,16 @@ internal static unsafe class Blocks3
         target[6] += source[6];
         target[7] += source[7];
         target[8] += source[8];
+    }
+
+    /// <summary>y = M x for one block (y may not be x).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void Multiply(double* m, double* x, double* y)
+    {
+        double x0 = x[0], x1 = x[1], x2 = x[2];
+        y[0] = (m[0] * x0) + (m[1] * x1) + (m[2] * x2);
+        y[1] = (m[3] * x0) + (m[4] * x1) + (m[5] * x2);
+        y[2] = (m[6] * x0) + (m[7] * x1) + (m[8] * x2);
     }
 
     /// <summary>y_i = M_i x_i for <paramref name="count"/> blocks.</summary>

@@ -1,62 +1,103 @@
 using System;
+using System.Runtime.CompilerServices;
 using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics.Integrators;
 
 /// <summary>
-/// The vector passes of implicit Euler's conjugate gradients, in a fixed number of chunks of particles whose partial
-/// sums are added in chunk order: the same bits whether the chunks run on one thread or on a runner's several.
+/// The vector passes of implicit Euler's conjugate gradients (Chronopoulos and Gear's form, see
+/// <see cref="ImplicitEuler"/>), in a fixed number of chunks of particles whose partial sums are added in chunk order:
+/// the same bits whether the chunks run on one thread or on a runner's several.
 /// </summary>
+/// <remarks>
+/// The vectors, 3 values per particle: b the right-hand side, dv the solution, r = b - A dv the residual, z = P r the
+/// preconditioned residual, w = A z, p the search direction and s = A p; jw receives the system's J times a vector;
+/// the blocks (9 values per particle) are D_i^-1 = (M_i - J_ii)^-1 once <see cref="InvertBlocks"/> has run. A pinned
+/// particle's components are 0 in every vector but dv's warm start (filtered there too).
+/// </remarks>
 internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 {
     private const int DotPass = 0;
-    private const int MassMinusJacobianPass = 1;
-    private const int UpdatePass = 2;
-    private const int JacobiPass = 3;
-    private const int DirectionPass = 4;
+    private const int RightHandSidePass = 1;
+    private const int WarmStartPass = 2;
+    private const int ResidualPass = 3;
+    private const int MassMinusJacobianPass = 4;
+    private const int UpdatePass = 5;
+    private const int JacobiPass = 6;
+    private const int InvertBlocksPass = 7;
+    private const int EndStatePass = 8;
 
     private readonly double[] _partial = new double[AggregationMultigrid.Chunks];
+    private readonly double[] _secondPartial = new double[AggregationMultigrid.Chunks];
     private double[] _masses = Array.Empty<double>();
     private double[] _inverseMasses = Array.Empty<double>();
-    private double[] _dv = Array.Empty<double>();
-    private double[] _r = Array.Empty<double>();
-    private double[] _p = Array.Empty<double>();
-    private double[] _q = Array.Empty<double>();
-    private double[] _z = Array.Empty<double>();
-    private double[] _jw = Array.Empty<double>();
-    private double[] _blocks = Array.Empty<double>();
     private IParallelRunner? _runner;
+    private int _particles;
 
     // The operation of the pass under way and its arguments (pinned for the pass's duration).
     private int _operation;
     private double* _a;
     private double* _b;
+    private double* _c;
+    private double* _d;
     private double _scalar;
+    private double _secondScalar;
+    private double* _pB;
     private double* _pDv;
     private double* _pR;
     private double* _pP;
-    private double* _pQ;
+    private double* _pS;
     private double* _pZ;
+    private double* _pW;
     private double* _pJw;
     private double* _pBlocks;
     private double* _pMasses;
     private double* _pInverseMasses;
-    private int _particles;
 
-    /// <summary>The system's J w, which <see cref="MassMinusJacobian"/> reads.</summary>
-    public double[] JacobianProduct => _jw;
+    /// <summary>The right-hand side b.</summary>
+    public double[] B { get; private set; } = Array.Empty<double>();
 
-    /// <summary>This step's inverse masses (0 for pinned particles).</summary>
-    public Span<double> InverseMasses => _inverseMasses;
+    /// <summary>The solution dv.</summary>
+    public double[] Dv { get; private set; } = Array.Empty<double>();
+
+    /// <summary>The residual r = b - A dv.</summary>
+    public double[] R { get; private set; } = Array.Empty<double>();
+
+    /// <summary>The search direction p.</summary>
+    public double[] P { get; private set; } = Array.Empty<double>();
+
+    /// <summary>s = A p.</summary>
+    public double[] S { get; private set; } = Array.Empty<double>();
+
+    /// <summary>The preconditioned residual z.</summary>
+    public double[] Z { get; private set; } = Array.Empty<double>();
+
+    /// <summary>w = A z.</summary>
+    public double[] W { get; private set; } = Array.Empty<double>();
+
+    /// <summary>The system's J times a vector, which <see cref="Residual"/> and <see cref="MassMinusJacobian"/> read.</summary>
+    public double[] JacobianProduct { get; private set; } = Array.Empty<double>();
+
+    /// <summary>The diagonal blocks: J_ii, then D_i^-1 after <see cref="InvertBlocks"/> (9 values per particle).</summary>
+    public double[] Blocks { get; private set; } = Array.Empty<double>();
+
+    /// <summary>This step's inverse masses (0 for pinned particles), a copy the passes own.</summary>
+    public double[] InverseMasses => _inverseMasses;
+
+    /// <summary>The number of particles the vectors are bound for.</summary>
+    public int Particles => _particles;
+
+    /// <summary>r . z of the last <see cref="Update"/> with block Jacobi (the pass computes z = D^-1 r as it goes).</summary>
+    public double LastJacobiProduct { get; private set; }
 
     public void Bind(
-        double[] dv, double[] r, double[] p, double[] q, double[] z, double[] jw, double[] inverseBlocks,
+        double[] b, double[] dv, double[] r, double[] p, double[] s, double[] z, double[] w, double[] jw, double[] blocks,
         Span<double> masses, Span<double> inverseMasses, IParallelRunner? runner)
     {
         // Every pass runs its pointers over 3 values per particle (9 for the blocks): checked here, where they are bound.
         var n = 3L * masses.Length;
-        if (inverseMasses.Length != masses.Length || dv.Length < n || r.Length < n || p.Length < n || q.Length < n
-            || z.Length < n || jw.Length < n || inverseBlocks.Length < 3 * n)
+        if (inverseMasses.Length != masses.Length || b.Length < n || dv.Length < n || r.Length < n || p.Length < n
+            || s.Length < n || z.Length < n || w.Length < n || jw.Length < n || blocks.Length < 3 * n)
         {
             throw new ArgumentException(
                 $"The conjugate gradients' vectors need {n} values each and the blocks {3 * n} for {masses.Length} particles.");
@@ -70,13 +111,15 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 
         masses.CopyTo(_masses);
         inverseMasses.CopyTo(_inverseMasses);
-        _dv = dv;
-        _r = r;
-        _p = p;
-        _q = q;
-        _z = z;
-        _jw = jw;
-        _blocks = inverseBlocks;
+        B = b;
+        Dv = dv;
+        R = r;
+        P = p;
+        S = s;
+        Z = z;
+        W = w;
+        JacobianProduct = jw;
+        Blocks = blocks;
         _runner = runner;
         _particles = masses.Length;
     }
@@ -102,38 +145,93 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         }
     }
 
-    /// <summary>q = M w - J w on the free particles (J w from <see cref="JacobianProduct"/>), 0 on pinned ones; returns w . q.</summary>
-    public double MassMinusJacobian(double[] w)
+    /// <summary>b = h (f + h jw) on the free particles, 0 on pinned ones (jw = K v0); returns b . b.</summary>
+    public double RightHandSide(double[] force, double h)
     {
-        CheckLength(w);
-        fixed (double* pw = w)
+        CheckLength(force);
+        fixed (double* f = force)
         {
-            _a = pw;
-            return Run(MassMinusJacobianPass);
+            _a = f;
+            _scalar = h;
+            return Run(RightHandSidePass);
         }
     }
 
-    /// <summary>dv += alpha p, r -= alpha q; returns r . r.</summary>
-    public double Update(double alpha)
+    /// <summary>
+    /// dv = 2 last - previous (or last alone when <paramref name="previous"/> is null) on the free particles, 0 on
+    /// pinned ones: the warm start, the linear extrapolation of the last two steps' dv.
+    /// </summary>
+    public void WarmStart(double[] last, double[]? previous)
     {
-        _scalar = alpha;
-        return Run(UpdatePass);
+        CheckLength(last);
+        if (previous is not null)
+        {
+            CheckLength(previous);
+        }
+
+        fixed (double* l = last, q = previous)
+        {
+            _a = l;
+            _b = q;
+            _ = Run(WarmStartPass);
+        }
     }
 
-    /// <summary>z = P r with the inverted diagonal blocks; returns r . z.</summary>
+    /// <summary>r = b - (M dv - jw) on the free particles (jw = J dv), 0 on pinned ones; returns r . r.</summary>
+    public double Residual() => Run(ResidualPass);
+
+    /// <summary>w = M z - jw on the free particles (jw = J z), 0 on pinned ones; returns z . w.</summary>
+    public double MassMinusJacobian() => Run(MassMinusJacobianPass);
+
+    /// <summary>
+    /// One step of the iteration and, for block Jacobi, its preconditioner: p = z + beta p, s = w + beta s,
+    /// dv += alpha p, r -= alpha s, then z = D^-1 r. Returns r . r; r . z is left in <see cref="LastJacobiProduct"/>.
+    /// </summary>
+    public double Update(double alpha, double beta)
+    {
+        _scalar = alpha;
+        _secondScalar = beta;
+        var rr = Run(UpdatePass);
+        LastJacobiProduct = SecondSum();
+        return rr;
+    }
+
+    /// <summary>z = D^-1 r with the inverted diagonal blocks; returns r . z.</summary>
     public double Jacobi() => Run(JacobiPass);
 
-    /// <summary>p = z + beta p.</summary>
-    public void NewDirection(double beta)
+    /// <summary>
+    /// Turns each block J_ii into D_i^-1 = (M_i - J_ii)^-1 in place; a pinned particle gets the zero block (filtered), a
+    /// degenerate block plain Jacobi on the mass, 1 / m_i.
+    /// </summary>
+    public void InvertBlocks() => _ = Run(InvertBlocksPass);
+
+    /// <summary>v1 = v0 + dv and x1 = x0 + h v1, for every particle (a pinned one moves at its own velocity).</summary>
+    public void EndState(ReadOnlySpan<double> x0, ReadOnlySpan<double> v0, Span<double> x1, Span<double> v1, double h)
     {
-        _scalar = beta;
-        _ = Run(DirectionPass);
+        var n = 3L * _particles;
+        if (x0.Length < n || v0.Length < n || x1.Length < n || v1.Length < n)
+        {
+            throw new ArgumentException($"The end state needs {n} positions and velocities.");
+        }
+
+        fixed (double* px0 = &System.Runtime.InteropServices.MemoryMarshal.GetReference(x0))
+        fixed (double* pv0 = &System.Runtime.InteropServices.MemoryMarshal.GetReference(v0))
+        fixed (double* px1 = x1, pv1 = v1)
+        {
+            _a = px0;
+            _b = pv0;
+            _c = px1;
+            _d = pv1;
+            _scalar = h;
+            _ = Run(EndStatePass);
+        }
     }
 
     public void Execute(int chunk, int chunkCount)
     {
         var (begin, end) = Chunk.Range(chunk, chunkCount, _particles);
         var sum = 0.0;
+        var second = 0.0;
         switch (_operation)
         {
             case DotPass:
@@ -143,33 +241,107 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                 }
 
                 break;
-            case MassMinusJacobianPass:
+            case RightHandSidePass:
                 for (var i = begin; i < end; i++)
                 {
                     var o = 3 * i;
-                    double* w = _a + o, q = _pQ + o, jw = _pJw + o;
+                    double* bi = _pB + o, f = _a + o, jw = _pJw + o;
                     if (_pInverseMasses[i] == 0.0)
                     {
-                        q[0] = q[1] = q[2] = 0.0;
+                        bi[0] = bi[1] = bi[2] = 0.0;
+                        continue;
+                    }
+
+                    var h = _scalar;
+                    bi[0] = h * (f[0] + (h * jw[0]));
+                    bi[1] = h * (f[1] + (h * jw[1]));
+                    bi[2] = h * (f[2] + (h * jw[2]));
+                    sum += bi[0] * bi[0];
+                    sum += bi[1] * bi[1];
+                    sum += bi[2] * bi[2];
+                }
+
+                break;
+            case WarmStartPass:
+                for (var i = begin; i < end; i++)
+                {
+                    var o = 3 * i;
+                    double* dv = _pDv + o, last = _a + o;
+                    if (_pInverseMasses[i] == 0.0)
+                    {
+                        dv[0] = dv[1] = dv[2] = 0.0;
+                    }
+                    else if (_b is null)
+                    {
+                        dv[0] = last[0];
+                        dv[1] = last[1];
+                        dv[2] = last[2];
+                    }
+                    else
+                    {
+                        var previous = _b + o;
+                        dv[0] = (2.0 * last[0]) - previous[0];
+                        dv[1] = (2.0 * last[1]) - previous[1];
+                        dv[2] = (2.0 * last[2]) - previous[2];
+                    }
+                }
+
+                break;
+            case ResidualPass:
+                for (var i = begin; i < end; i++)
+                {
+                    var o = 3 * i;
+                    double* x = _pDv + o, r = _pR + o, bi = _pB + o, jw = _pJw + o;
+                    if (_pInverseMasses[i] == 0.0)
+                    {
+                        r[0] = r[1] = r[2] = 0.0;
                         continue;
                     }
 
                     var m = _pMasses[i];
-                    double qx = (m * w[0]) - jw[0], qy = (m * w[1]) - jw[1], qz = (m * w[2]) - jw[2];
-                    q[0] = qx;
-                    q[1] = qy;
-                    q[2] = qz;
-                    sum += (w[0] * qx) + (w[1] * qy) + (w[2] * qz);
+                    r[0] = bi[0] - ((m * x[0]) - jw[0]);
+                    r[1] = bi[1] - ((m * x[1]) - jw[1]);
+                    r[2] = bi[2] - ((m * x[2]) - jw[2]);
+                    sum += r[0] * r[0];
+                    sum += r[1] * r[1];
+                    sum += r[2] * r[2];
+                }
+
+                break;
+            case MassMinusJacobianPass:
+                for (var i = begin; i < end; i++)
+                {
+                    var o = 3 * i;
+                    double* z = _pZ + o, w = _pW + o, jw = _pJw + o;
+                    if (_pInverseMasses[i] == 0.0)
+                    {
+                        w[0] = w[1] = w[2] = 0.0;
+                        continue;
+                    }
+
+                    var m = _pMasses[i];
+                    double wx = (m * z[0]) - jw[0], wy = (m * z[1]) - jw[1], wz = (m * z[2]) - jw[2];
+                    w[0] = wx;
+                    w[1] = wy;
+                    w[2] = wz;
+                    sum += (z[0] * wx) + (z[1] * wy) + (z[2] * wz);
                 }
 
                 break;
             case UpdatePass:
-                for (var k = 3 * begin; k < 3 * end; k++)
+                for (var i = begin; i < end; i++)
                 {
-                    _pDv[k] += _scalar * _pP[k];
-                    var rk = _pR[k] - (_scalar * _pQ[k]);
-                    _pR[k] = rk;
-                    sum += rk * rk;
+                    var o = 3 * i;
+                    double* m = _pBlocks + (9 * i);
+                    double r0 = UpdateComponent(o), r1 = UpdateComponent(o + 1), r2 = UpdateComponent(o + 2);
+                    sum += r0 * r0;
+                    sum += r1 * r1;
+                    sum += r2 * r2;
+                    var z = _pZ + o;
+                    z[0] = (m[0] * r0) + (m[1] * r1) + (m[2] * r2);
+                    z[1] = (m[3] * r0) + (m[4] * r1) + (m[5] * r2);
+                    z[2] = (m[6] * r0) + (m[7] * r1) + (m[8] * r2);
+                    second += (r0 * z[0]) + (r1 * z[1]) + (r2 * z[2]);
                 }
 
                 break;
@@ -188,28 +360,101 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                 }
 
                 break;
+            case InvertBlocksPass:
+                for (var i = begin; i < end; i++)
+                {
+                    InvertBlock(i);
+                }
+
+                break;
             default:
                 for (var k = 3 * begin; k < 3 * end; k++)
                 {
-                    _pP[k] = _pZ[k] + (_scalar * _pP[k]);
+                    var v1 = _b[k] + _pDv[k];
+                    _d[k] = v1;
+                    _c[k] = _a[k] + (_scalar * v1);
                 }
 
                 break;
         }
 
         _partial[chunk] = sum;
+        _secondPartial[chunk] = second;
+    }
+
+    /// <summary>p = z + beta p, s = w + beta s, dv += alpha p, r -= alpha s for one component; returns the new r.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private double UpdateComponent(int k)
+    {
+        var p = _pZ[k] + (_secondScalar * _pP[k]);
+        _pP[k] = p;
+        var s = _pW[k] + (_secondScalar * _pS[k]);
+        _pS[k] = s;
+        _pDv[k] += _scalar * p;
+        var r = _pR[k] - (_scalar * s);
+        _pR[k] = r;
+        return r;
+    }
+
+    /// <summary>D_i^-1 = (M_i - J_ii)^-1 in place for particle i (cofactors, <see cref="Blocks3.Invert(double*, double*)"/>).</summary>
+    private void InvertBlock(int i)
+    {
+        var blocks = _pBlocks + (9L * i);
+        if (_pInverseMasses[i] == 0.0)
+        {
+            for (var k = 0; k < 9; k++)
+            {
+                blocks[k] = 0.0;
+            }
+
+            return;
+        }
+
+        var m = _pMasses[i];
+        for (var k = 0; k < 9; k++)
+        {
+            blocks[k] = -blocks[k];
+        }
+
+        blocks[0] += m;
+        blocks[4] += m;
+        blocks[8] += m;
+        if (!Blocks3.Invert(blocks, blocks))
+        {
+            // Degenerate block: fall back to plain Jacobi on the mass alone.
+            for (var k = 0; k < 9; k++)
+            {
+                blocks[k] = 0.0;
+            }
+
+            blocks[0] = blocks[4] = blocks[8] = 1.0 / m;
+        }
+    }
+
+    private double SecondSum()
+    {
+        var total = 0.0;
+        for (var c = 0; c < _secondPartial.Length; c++)
+        {
+            total += _secondPartial[c];
+        }
+
+        return total;
     }
 
     private double Run(int operation)
     {
         _operation = operation;
-        fixed (double* dv = _dv, r = _r, p = _p, q = _q, z = _z, jw = _jw, blocks = _blocks, masses = _masses, inverseMasses = _inverseMasses)
+        fixed (double* b = B, dv = Dv, r = R, p = P, s = S, z = Z, w = W, jw = JacobianProduct, blocks = Blocks)
+        fixed (double* masses = _masses, inverseMasses = _inverseMasses)
         {
+            _pB = b;
             _pDv = dv;
             _pR = r;
             _pP = p;
-            _pQ = q;
+            _pS = s;
             _pZ = z;
+            _pW = w;
             _pJw = jw;
             _pBlocks = blocks;
             _pMasses = masses;

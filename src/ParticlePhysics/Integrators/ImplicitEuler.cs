@@ -45,8 +45,9 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     private double[]? _dv;
     private double[]? _residual;
     private double[]? _direction;
-    private double[]? _product;
+    private double[]? _directionProduct;
     private double[]? _preconditioned;
+    private double[]? _preconditionedProduct;
     private double[]? _jacobianProduct;
     private double[]? _blocks;
     private ConjugateGradientPasses? _passes;
@@ -247,8 +248,9 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         _previousDv ??= new double[n]; // is no part of the committed state), so that later steps allocate nothing
         var r = _residual = StepChecks.Sized(_residual, n);
         var p = _direction = StepChecks.Sized(_direction, n);
-        var q = _product = StepChecks.Sized(_product, n);
+        var s = _directionProduct = StepChecks.Sized(_directionProduct, n);
         var z = _preconditioned = StepChecks.Sized(_preconditioned, n);
+        var w = _preconditionedProduct = StepChecks.Sized(_preconditionedProduct, n);
         var jw = _jacobianProduct = StepChecks.Sized(_jacobianProduct, n);
         var blocks = _blocks = StepChecks.Sized(_blocks, 3 * n);
         var masses = system.Masses.ForReading();
@@ -263,14 +265,16 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         system.AccumulateForcesAndLinearize(end, x0, v0, h * h, h, UserForces, jw, blocks).CopyTo(f0);
         CheckFinite(f0, inverseMasses, time, end, "the force on particle {0} is {1}: a force generator wrote a value that is not finite");
 
-        // b = h (f0 + h K v0), filtered; block Jacobi P = inverse of the blocks of M - (h D + h^2 K); the multigrid's
-        // coarse levels from the same linearisation.
-        for (var k = 0; k < n; k++)
-        {
-            b[k] = inverseMasses[k / 3] == 0.0 ? 0.0 : h * (f0[k] + (h * jw[k]));
-        }
-
+        // b = h (f0 + h K v0), filtered; the multigrid's coarse levels from the same linearisation (before the blocks
+        // are inverted); block Jacobi P = inverse of the blocks of M - (h D + h^2 K).
+        var passes = _passes ??= new ConjugateGradientPasses();
+        passes.Bind(b, dv, r, p, s, z, w, jw, blocks, masses, inverseMasses, runner);
+        var rhsNorm = Math.Sqrt(passes.RightHandSide(f0, h));
         CheckFinite(b, inverseMasses, time, end, "the implicit system's right-hand side h (f + h K v) at particle {0} is {1}: the step is too large for these forces");
+        if (!DoubleChecks.IsFinite(rhsNorm))
+        {
+            throw Diverged(time, end, 0, rhsNorm, "the norm of the implicit system's right-hand side overflows: the step is too large for these forces");
+        }
 
         var multigrid = Preconditioner == ImplicitPreconditioner.Multigrid && n >= 3 * MultigridThreshold;
         if (multigrid)
@@ -280,90 +284,75 @@ public sealed class ImplicitEuler : IStatefulIntegrator
             multigrid = _multigrid.HasCoarseLevels;
         }
 
-        InvertBlocks(blocks, masses, inverseMasses);
+        passes.InvertBlocks();
 
         // Preconditioned conjugate gradients. Motion is smooth, so dv changes little from step to step: start from
         // the linear extrapolation 2 dv(n-1) - dv(n-2) of the last two steps (or the last one), else from 0. Any start
         // converges to the same tolerance; a good one halves the iterations. Pinned components are always 0.
-        var passes = _passes ??= new ConjugateGradientPasses();
-        passes.Bind(dv, r, p, q, z, jw, blocks, masses, inverseMasses, runner);
-        var rhsNorm = Math.Sqrt(passes.Dot(b, b));
-        if (!DoubleChecks.IsFinite(rhsNorm))
-        {
-            throw Diverged(time, end, 0, rhsNorm, "the norm of the implicit system's right-hand side overflows: the step is too large for these forces");
-        }
-
         // The committed warm start is only read here: a step that fails leaves it as it was (CommitStep moves dv in).
         var known = WarmStart && _dvLength == n ? _knownSteps : 0;
+        double rr;
         if (known > 0)
         {
-            var lastDv = _lastDv!;
-            var previous = _previousDv;
-            for (var k = 0; k < n; k++)
-            {
-                var last = lastDv[k];
-                var guess = known > 1 ? (2.0 * last) - previous![k] : last;
-                dv[k] = inverseMasses[k / 3] == 0.0 ? 0.0 : guess;
-            }
-
-            _ = ApplySystemMatrix(system, passes, dv);
-            for (var k = 0; k < n; k++)
-            {
-                r[k] = b[k] - q[k];
-            }
+            passes.WarmStart(_lastDv!, known > 1 ? _previousDv : null);
+            Array.Clear(jw, 0, n);
+            system.AddJacobianProduct(dv, jw);
+            rr = passes.Residual();
         }
         else
         {
             Array.Clear(dv, 0, n);
             Array.Copy(b, r, n);
+            rr = rhsNorm * rhsNorm;
         }
 
-        var rz = Precondition(passes, multigrid, runner);
-        if (multigrid && !(rz > 0.0))
-        {
-            multigrid = false; // not positive along r (a force whose couplings are not of pair form): block Jacobi
-            rz = Precondition(passes, multigrid, runner);
-        }
-
-        Array.Copy(z, p, n);
+        // Chronopoulos and Gear's form of the iteration ("s-step methods for the conjugate gradient method", 1989): the
+        // same iterates as the textbook form in exact arithmetic, with s = A p carried by the recurrence
+        // s = w + beta s from w = A z, so that each iteration applies A to the preconditioned residual z as soon as it
+        // is known and both scalars come from one product:
+        //   gamma = r . z, delta = z . w, beta = gamma / gamma_old, alpha = gamma / (delta - beta gamma / alpha_old)
+        //   p = z + beta p, s = w + beta s, dv += alpha p, r -= alpha s
+        // (delta - beta gamma / alpha_old is p . A p). The update is one pass over the vectors, fused with the
+        // preconditioner's first pass (block Jacobi's z = D^-1 r, or the multigrid's restriction), which halves the
+        // passes over the vectors and the hand-offs to a runner per iteration.
+        Array.Clear(p, 0, n);
+        Array.Clear(s, 0, n);
         var iterations = 0;
-        var residualNorm = Math.Sqrt(passes.Dot(r, r));
+        var residualNorm = Math.Sqrt(rr);
         var target = _tolerance * rhsNorm;
-        while (residualNorm > target && iterations < _maxIterations)
+        if (residualNorm > target && _maxIterations > 0)
         {
-            var pq = ApplySystemMatrix(system, passes, p);
-            if (!DoubleChecks.IsFinite(pq))
+            var gamma = Precondition(passes, ref multigrid, runner);
+            var delta = ApplySystemMatrix(system, passes, time, end);
+            var alpha = gamma / delta;
+            var beta = 0.0;
+            while (delta > 0.0)
             {
-                throw Diverged(time, end, 0, pq, "the implicit system's matrix M - h D - h^2 K is not finite: the step is too large for these forces");
-            }
+                residualNorm = Math.Sqrt(multigrid
+                    ? _multigrid!.BeginApply(passes, alpha, beta, update: true, runner)
+                    : passes.Update(alpha, beta));
+                iterations++;
+                if (residualNorm <= target || iterations >= _maxIterations || !DoubleChecks.IsFinite(residualNorm))
+                {
+                    break;
+                }
 
-            if (!(pq > 0.0))
-            {
-                break; // not positive definite along p: keep the best solution so far
-            }
+                var gammaNext = multigrid ? _multigrid!.FinishApply(passes, runner) : passes.LastJacobiProduct;
+                var restart = false;
+                if (multigrid && !(gammaNext > 0.0))
+                {
+                    // The multigrid lost positivity along r: continue with block Jacobi, restarting the directions.
+                    multigrid = false;
+                    gammaNext = passes.Jacobi();
+                    restart = true;
+                }
 
-            var alpha = rz / pq;
-            iterations++;
-            residualNorm = Math.Sqrt(passes.Update(alpha));
-            if (residualNorm <= target)
-            {
-                break;
+                delta = ApplySystemMatrix(system, passes, time, end);
+                beta = restart ? 0.0 : gammaNext / gamma;
+                delta -= restart ? 0.0 : beta * gammaNext / alpha; // p . A p for the next direction
+                alpha = gammaNext / delta;
+                gamma = gammaNext;
             }
-
-            var rzNext = Precondition(passes, multigrid, runner);
-            if (multigrid && !(rzNext > 0.0))
-            {
-                // The multigrid lost positivity along r: continue with block Jacobi, restarting the directions.
-                multigrid = false;
-                rzNext = Precondition(passes, multigrid, runner);
-                rz = rzNext;
-                Array.Copy(z, p, n);
-                continue;
-            }
-
-            var beta = rzNext / rz;
-            rz = rzNext;
-            passes.NewDirection(beta);
         }
 
         LastIterations = iterations;
@@ -377,19 +366,29 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         }
 
         _pendingKnown = Math.Min(2, known + 1);
-
-        var x1 = next.Slice(0, n);
-        var v1 = next.Slice(n, n);
-        for (var k = 0; k < n; k++)
-        {
-            v1[k] = v0[k] + dv[k];
-            x1[k] = x0[k] + (h * v1[k]);
-        }
+        passes.EndState(x0, v0, next.Slice(0, n), next.Slice(n, n), h);
     }
 
-    /// <summary>z = P r with the multigrid or block Jacobi; returns r . z, summed in chunk order.</summary>
-    private double Precondition(ConjugateGradientPasses passes, bool multigrid, IParallelRunner? runner) =>
-        multigrid ? _multigrid!.Apply(_blocks!, _residual!, _preconditioned!, passes.InverseMasses, runner) : passes.Jacobi();
+    /// <summary>
+    /// z = P r with the multigrid, or block Jacobi (also when the multigrid is not positive along r: a force whose
+    /// couplings are not of pair form); returns r . z, summed in chunk order.
+    /// </summary>
+    private double Precondition(ConjugateGradientPasses passes, ref bool multigrid, IParallelRunner? runner)
+    {
+        if (multigrid)
+        {
+            _ = _multigrid!.BeginApply(passes, 0.0, 0.0, update: false, runner);
+            var rz = _multigrid.FinishApply(passes, runner);
+            if (rz > 0.0)
+            {
+                return rz;
+            }
+
+            multigrid = false;
+        }
+
+        return passes.Jacobi();
+    }
 
     /// <summary>Throws the step's failure at the first value of <paramref name="values"/> (3 per particle) that is not finite, skipping pinned particles.</summary>
     private void CheckFinite(double[] values, Span<double> inverseMasses, double time, double end, string cause)
@@ -416,43 +415,21 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         return new SimulationDivergedException(end, time, n + k, k / 3, value, double.MaxValue, cause);
     }
 
-    /// <summary>q = (M - J) w on the free particles, 0 on the pinned ones; returns w . q, summed in chunk order.</summary>
-    private static double ApplySystemMatrix(ILinearizableSystem system, ConjugateGradientPasses passes, double[] w)
+    /// <summary>
+    /// w = (M - J) z on the free particles, 0 on the pinned ones; returns z . w (summed in chunk order), or fails the
+    /// step when it is not finite.
+    /// </summary>
+    private double ApplySystemMatrix(ILinearizableSystem system, ConjugateGradientPasses passes, double time, double end)
     {
-        Array.Clear(passes.JacobianProduct, 0, w.Length);
-        system.AddJacobianProduct(w, passes.JacobianProduct);
-        return passes.MassMinusJacobian(w);
-    }
-
-    /// <summary>Turns each 3 x 3 block J_ii into (M_i - J_ii)^-1 in place; pinned particles get the zero block (filtered).</summary>
-    private static void InvertBlocks(double[] blocks, Span<double> masses, Span<double> inverseMasses)
-    {
-        for (var i = 0; i < masses.Length; i++)
+        Array.Clear(passes.JacobianProduct, 0, passes.Z.Length);
+        system.AddJacobianProduct(passes.Z, passes.JacobianProduct);
+        var zw = passes.MassMinusJacobian();
+        if (!DoubleChecks.IsFinite(zw))
         {
-            var o = 9 * i;
-            if (inverseMasses[i] == 0.0)
-            {
-                Array.Clear(blocks, o, 9);
-                continue;
-            }
-
-            // M_i - J_ii in place, then its inverse by cofactors (Blocks3, the multigrid's too).
-            var m = masses[i];
-            for (var k = 0; k < 9; k++)
-            {
-                blocks[o + k] = -blocks[o + k];
-            }
-
-            blocks[o] += m;
-            blocks[o + 4] += m;
-            blocks[o + 8] += m;
-            if (!Blocks3.Invert(blocks, o, blocks, o))
-            {
-                // Degenerate block: fall back to plain Jacobi on the mass alone.
-                Array.Clear(blocks, o, 9);
-                blocks[o] = blocks[o + 4] = blocks[o + 8] = 1.0 / m;
-            }
+            throw Diverged(time, end, 0, zw, "the implicit system's matrix M - h D - h^2 K is not finite: the step is too large for these forces");
         }
+
+        return zw;
     }
 
     /// <summary>Newton on G(y) = y - y0 - h f(t + h, y) = 0, with a forward-difference Jacobian and partial-pivot LU.</summary>

@@ -171,11 +171,13 @@ public class LinearizationBoundsTests
         var passes = new ConjugateGradientPasses();
         var masses = new double[] { 1, 1, 1, 1 };
         double[] V(int n) => new double[n];
-        Assert.Throws<ArgumentException>(() => passes.Bind(V(12), V(12), V(12), V(12), V(11), V(12), V(36), masses, masses, null));
-        Assert.Throws<ArgumentException>(() => passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(35), masses, masses, null));
-        passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(36), masses, masses, null);
+        Assert.Throws<ArgumentException>(() => passes.Bind(V(12), V(12), V(12), V(12), V(12), V(11), V(12), V(12), V(36), masses, masses, null));
+        Assert.Throws<ArgumentException>(() => passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(35), masses, masses, null));
+        passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(36), masses, masses, null);
         Assert.Throws<ArgumentException>(() => passes.Dot(V(12), V(6)));
-        Assert.Throws<ArgumentException>(() => passes.MassMinusJacobian(V(3)));
+        Assert.Throws<ArgumentException>(() => passes.RightHandSide(V(3), 0.1));
+        Assert.Throws<ArgumentException>(() => passes.WarmStart(V(12), V(9)));
+        Assert.Throws<ArgumentException>(() => passes.EndState(V(12), V(12), V(12), V(11), 0.1));
         Assert.Equal(0.0, passes.Dot(V(12), V(12)));
 
         var (world, _) = Chain(100, springs: 99);

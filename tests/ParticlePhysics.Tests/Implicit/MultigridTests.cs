@@ -82,6 +82,24 @@ public class MultigridTests
         Assert.Equal(StateMetrics.BitHash(serial.State), StateMetrics.BitHash(reversed.State));
     }
 
+    [Theory]
+    [InlineData(ImplicitPreconditioner.Multigrid, 6)]
+    [InlineData(ImplicitPreconditioner.BlockJacobi, 4)]
+    public void An_iteration_hands_work_to_the_runner_only_a_few_times(ImplicitPreconditioner preconditioner, int handOffs)
+    {
+        // Each hand-off costs several microseconds of waking a worker, against about 0.25 ms of work in an iteration
+        // of the 64 x 64 cloth. Per iteration: the spring product (per-spring slots, then the gather), w = A z with
+        // z . w, and the fused passes: the update with the preconditioner's first pass, and for the multigrid the first
+        // coarse level's residual and the post-smoothing with the prolongation (docs/benchmarks.md). Counted as the
+        // hand-offs added by the iterations that a tighter tolerance adds to the same steps.
+        var (loose, looseIterations) = HandOffs(preconditioner, 1e-3);
+        var (tight, tightIterations) = HandOffs(preconditioner, 1e-6);
+        var perIteration = (double)(tight - loose) / (tightIterations - looseIterations);
+        _output.WriteLine($"{preconditioner}: {perIteration:F2} hand-offs per iteration ({loose} and {tight} for {looseIterations} and {tightIterations} iterations)");
+        Assert.True(tightIterations > looseIterations + 10, $"{tightIterations} against {looseIterations}");
+        Assert.Equal(handOffs, perIteration, 2);
+    }
+
     [Fact]
     public void Stepping_allocates_nothing_after_the_first_step_with_or_without_a_runner()
     {
@@ -151,6 +169,39 @@ public class MultigridTests
         }
 
         return total / 60.0;
+    }
+
+    private static (long HandOffs, int Iterations) HandOffs(ImplicitPreconditioner preconditioner, double tolerance)
+    {
+        var system = Cloth(64);
+        var runner = new CountingRunner();
+        system.Runner = runner;
+        var implicitEuler = new ImplicitEuler { Tolerance = tolerance, Preconditioner = preconditioner };
+        var iterations = 0;
+        for (var step = 0; step < 10; step++)
+        {
+            system.Step(implicitEuler, Frame);
+            iterations += implicitEuler.LastIterations;
+        }
+
+        return (runner.Runs, iterations);
+    }
+
+    /// <summary>Runs the chunks in order on the calling thread, counting the hand-offs.</summary>
+    private sealed class CountingRunner : IParallelRunner
+    {
+        public long Runs { get; private set; }
+
+        public int MaxParallelism => 2;
+
+        public void Run(IParallelWork work, int chunkCount)
+        {
+            Runs++;
+            for (var c = 0; c < chunkCount; c++)
+            {
+                work.Execute(c, chunkCount);
+            }
+        }
     }
 
     private sealed class ReverseOrderRunner : IParallelRunner
