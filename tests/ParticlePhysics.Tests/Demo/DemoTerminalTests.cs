@@ -130,7 +130,10 @@ public sealed partial class DemoTerminalTests
         {
             var dotnet = Environment.GetEnvironmentVariable("DOTNET_HOST_PATH") is { Length: > 0 } host ? host : "dotnet";
             var demo = Path.Combine(AppContext.BaseDirectory, "ParticlePhysics.Demo.dll");
-            var command = string.Join(' ', new[] { dotnet, demo }.Concat(args).Select(Quote));
+            // Through coreutils' env --default-signal=INT, as an interactive shell starts a foreground job: a test run
+            // started in the background of a non-interactive shell (nohup ... &) ignores SIGINT, a child inherits that,
+            // and .NET never installs its Ctrl-C handler for a signal ignored at start, so the demo would not stop.
+            var command = string.Join(' ', new[] { "env", "--default-signal=INT", dotnet, demo }.Concat(args).Select(Quote));
             var start = new ProcessStartInfo("script")
             {
                 RedirectStandardInput = true,
