@@ -13,20 +13,21 @@ namespace ParticlePhysics.Contacts;
 /// The cell size h is the largest extent of the "ordinary" boxes, those no larger than 4 times the mean; each ordinary
 /// box goes into the cell of its centre, so two that overlap have centres at most h apart on each axis, in the same or
 /// adjacent cells: each box looks at its own cell and 13 of the 26 around it (those after it in the lexicographic order
-/// of the table's numbering, slowest axis first), so that each pair of neighbouring cells is visited once. The cells are kept in buckets (<see cref="CellBuckets"/>:
-/// a dense box of cells when the occupied cells fill one, a hash table otherwise), and the boxes are counting-sorted by
-/// bucket into slots (stable: a bucket's boxes in index order), each slot holding its box's bounds and cell, so that the
-/// boxes of a cell and of the cells beside it are read from consecutive memory; a box found in a bucket is a neighbour
-/// only if its own cell is the one visited, so hash collisions neither duplicate nor invent pairs. The few larger boxes
-/// (a particle moving very fast) are tested against every box.
+/// of the table's numbering, slowest axis first), so that each pair of neighbouring cells is visited once. The cells
+/// are kept in buckets (<see cref="CellBuckets"/>: a dense box of cells when the occupied cells fill one, a hash table
+/// otherwise), and the boxes are counting-sorted by bucket into slots (stable: a bucket's boxes in index order), each
+/// slot holding its box's bounds and cell, so that the boxes of a cell and of the cells beside it are read from
+/// consecutive memory; a box found in a bucket is a neighbour only if its own cell is the one visited, so hash
+/// collisions neither duplicate nor invent pairs. The few larger boxes (a particle moving very fast) are tested against
+/// every box.
 /// </para>
 /// <para>
 /// Each overlapping pair is reported once, as (i, j) with i &lt; j, in a deterministic order: with a dense table, in
 /// the order of the cells (a box's pairs with the boxes of its own and its 13 cells, then the next box's), so that
 /// the pairs of neighbouring particles come close together in the list wherever the particles are stored, and the
-/// stages that walk the pairs read each particle's data a few times in quick succession rather than once per slab of
-/// the pile; with a hashed table (cells spread thinly), in the order of the boxes' indices. The large boxes' pairs come
-/// last.
+/// stages that walk the pairs read each particle's data a few times in quick succession rather than at times a layer
+/// of a pile apart; with a hashed table (cells spread thinly), in the order of the boxes' indices. The large boxes'
+/// pairs come last.
 /// </para>
 /// </remarks>
 public sealed class SpatialHashGrid
