@@ -61,7 +61,7 @@ internal static class ContactCosts
             var n = pile.World.Count;
             Console.WriteLine(string.Create(
                 CultureInfo.InvariantCulture,
-                $"| {n} | {(double)pile.Contacts.CandidatePairCount / n:F3} | {(double)pile.Contacts.ImpactCount / n:F3} | {pile.NearWall():P1} | {Checksum(pile.Work)} | {pile.Resolves} | {pile.Fastest * 1e3:F3} | {pile.Fastest * 1e6 / n:F3} | {pile.FastestCpu * 1e6 / n:F3} |"));
+                $"| {n} | {(double)pile.Contacts.CandidatePairCount / n:F3} | {(double)pile.Contacts.ImpactCount / n:F4} | {pile.NearWall():P1} | {Checksum(pile.Work)} | {pile.Resolves} | {pile.Fastest * 1e3:F3} | {pile.Fastest * 1e6 / n:F3} | {pile.FastestCpu * 1e6 / n:F3} |"));
         }
 
         return 0;
