@@ -28,6 +28,9 @@ namespace ParticlePhysics.Benchmarks;
 /// the structural springs (<see cref="ClothQuality"/>; deterministic, no timing).</item>
 /// <item><c>costs [batches]</c>: the cost of a step per step, per particle and per spring for each integrator, the
 /// constants of the demo's run-cost estimate (<see cref="StepCosts"/>).</item>
+/// <item><c>contacts [--sizes 1000,10000,100000] [--resolves 5] [--state DIR]</c>: the contact stage on settled piles,
+/// outside BenchmarkDotNet: what each pile holds, a checksum of the result, the fastest resolve; for callgrind
+/// (<see cref="ContactCosts"/>).</item>
 /// <item><c>--quick</c> (before BenchmarkDotNet's arguments): small cloths, for CI.</item>
 /// </list>
 /// After a BenchmarkDotNet run it exits 1 if any benchmark failed or has no result (NA).
@@ -64,6 +67,11 @@ internal static class Program
         if (args.Length > 0 && args[0] == "costs")
         {
             return StepCosts.Run(args[1..]);
+        }
+
+        if (args.Length > 0 && args[0] == "contacts")
+        {
+            return ContactCosts.Run(args[1..]);
         }
 
         var quick = args.Length > 0 && args[0] == "--quick";
@@ -296,7 +304,7 @@ internal static class Program
         return 0;
     }
 
-    private static string? Option(string[] args, string name)
+    internal static string? Option(string[] args, string name)
     {
         var i = Array.IndexOf(args, name);
         return i >= 0 && i + 1 < args.Length ? args[i + 1] : null;

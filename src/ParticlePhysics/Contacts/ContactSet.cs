@@ -21,11 +21,12 @@ namespace ParticlePhysics.Contacts;
 /// <para>
 /// After a force-based integrator (<see cref="Resolve"/>), in stages: (1) each particle's path within the step is the
 /// cubic through its start and end (<see cref="ParticlePaths"/>: exact for constant forces); (2) the broad phase
-/// (<see cref="SpatialHashGrid"/>) pairs the particles whose swept boxes overlap; (3) impacts are found by safe steps
-/// along the paths (<see cref="ContactSearch"/>) and resolved in time order (<see cref="ImpactQueue"/>), each impulse
-/// changing the rest of its particles' paths; (4) each resting particle's last stretch of the step on its surface
-/// gets the normal force and exact sliding friction (<see cref="CoulombSlide"/>); (5) a few Gauss-Seidel passes push
-/// apart what still overlaps (stacks, piles) and take out the approaching velocity.
+/// (<see cref="SpatialHashGrid"/>) pairs the particles whose swept boxes overlap, listed in the order of its cells when
+/// they fill a box (the order every later stage walks the pairs in, so that a particle's pairs come close together);
+/// (3) impacts are found by safe steps along the paths (<see cref="ContactSearch"/>) and resolved in time order
+/// (<see cref="ImpactQueue"/>), each impulse changing the rest of its particles' paths; (4) each resting particle's
+/// last stretch of the step on its surface gets the normal force and exact sliding friction (<see cref="CoulombSlide"/>);
+/// (5) a few Gauss-Seidel passes push apart what still overlaps (stacks, piles) and take out the approaching velocity.
 /// </para>
 /// <para>
 /// Inside the position-based integrator's substeps the same obstacles and pairs are inequality constraints of zero

@@ -12,13 +12,23 @@ namespace ParticlePhysics.Contacts;
 /// <para>
 /// The cell size h is the largest extent of the "ordinary" boxes, those no larger than 4 times the mean; each ordinary
 /// box goes into the cell of its centre, so two that overlap have centres at most h apart on each axis, in the same or
-/// adjacent cells: each box looks at its own cell and the 13 of the 26 around it that come after it in lexicographic
-/// order, so that each pair of neighbouring cells is visited once. Cells are hashed into a table of 2^k &gt;= 2 N
-/// buckets, and the boxes are counting-sorted by bucket (stable, so every run visits them in the same order); a box
-/// found in a bucket is a neighbour only if its own cell is the one visited, so hash collisions neither duplicate nor
-/// invent pairs. The few larger boxes (a particle moving very fast) are tested against every box.
+/// adjacent cells: each box looks at its own cell and 13 of the 26 around it (those after it in the lexicographic order
+/// of the table's numbering, slowest axis first), so that each pair of neighbouring cells is visited once. The cells
+/// are kept in buckets (<see cref="CellBuckets"/>: a dense box of cells when the occupied cells fill one, a hash table
+/// otherwise), and the boxes are counting-sorted by bucket into slots (stable: a bucket's boxes in index order), each
+/// slot holding its box's bounds and cell, so that the boxes of a cell and of the cells beside it are read from
+/// consecutive memory; a box found in a bucket is a neighbour only if its own cell is the one visited, so hash
+/// collisions neither duplicate nor invent pairs. The few larger boxes (a particle moving very fast) are tested against
+/// every box.
 /// </para>
-/// <para>Each overlapping pair is reported once, as (i, j) with i &lt; j, in a deterministic order.</para>
+/// <para>
+/// Each overlapping pair is reported once, as (i, j) with i &lt; j, in a deterministic order: with a dense table, in
+/// the order of the cells (a box's pairs with the boxes of its own and its 13 cells, then the next box's), so that
+/// the pairs of neighbouring particles come close together in the list wherever the particles are stored, and the
+/// stages that walk the pairs read each particle's data a few times in quick succession rather than at times a layer
+/// of a pile apart; with a hashed table (cells spread thinly), in the order of the boxes' indices. The large boxes'
+/// pairs come last.
+/// </para>
 /// </remarks>
 public sealed class SpatialHashGrid
 {
@@ -28,25 +38,28 @@ public sealed class SpatialHashGrid
     // merges far cells, which costs time, never a pair (the overlap test decides).
     private const long CoordinateLimit = (1L << 20) - 2;
 
-    // The cell itself, then the 13 neighbours (dx, dy, dz) that come after it in lexicographic order.
+    // The cell itself, then the 13 neighbours that come after it in lexicographic order, as steps along the slowest,
+    // the middle and the fastest axis of the table's numbering (CellBuckets.Axis).
     private static readonly int[] _forward =
     {
         0, 0, 0, 0, 0, 1, 0, 1, -1, 0, 1, 0, 0, 1, 1, 1, -1, -1, 1, -1, 0, 1, -1, 1, 1, 0, -1, 1, 0, 0, 1, 0, 1, 1, 1, -1,
         1, 1, 0, 1, 1, 1,
     };
-    private double[] _min = Array.Empty<double>();
-    private double[] _max = Array.Empty<double>();
-    private long[] _cells = Array.Empty<long>();
-    private int[] _bucketStart = Array.Empty<int>();
-    private int[] _sorted = Array.Empty<int>();
+    private readonly int[] _offsets = new int[42]; // _forward as (dx, dy, dz) for the last build's numbering
+    private double[] _slotMin = Array.Empty<double>();
+    private double[] _slotMax = Array.Empty<double>();
+    private long[] _slotCell = Array.Empty<long>();
+    private int[] _boxOf = Array.Empty<int>();
+    private int[] _slotOf = Array.Empty<int>();
+    private long[] _cellOf = Array.Empty<long>();
     private int[] _bucketOf = Array.Empty<int>();
-    private int[] _large = Array.Empty<int>();
+    private int[] _bucketStart = Array.Empty<int>();
     private int[] _first = Array.Empty<int>();
     private int[] _second = Array.Empty<int>();
-    private int _count;
+    private CellBuckets _buckets;
+    private int _ordinaryCount;
     private int _largeCount;
     private int _pairCount;
-    private int _mask;
     private double _cellSize;
 
     /// <summary>The number of pairs the last <see cref="FindPairs"/> found.</summary>
@@ -61,6 +74,9 @@ public sealed class SpatialHashGrid
     /// <summary>The cell size of the last build, in metres.</summary>
     public double CellSize => _cellSize;
 
+    /// <summary>True when the last build kept the cells in a dense box (the pairs then come in the order of the cells).</summary>
+    internal bool Dense => _buckets.Dense;
+
     /// <summary>
     /// Finds every pair of overlapping boxes (touching counts) among <paramref name="count"/> boxes, box i being
     /// [min[3i..3i+2], max[3i..3i+2]]; <paramref name="filter"/>, if not null, drops pairs it refuses.
@@ -72,25 +88,36 @@ public sealed class SpatialHashGrid
             throw new ArgumentException($"min and max need 3 values for each of the {count} boxes.", nameof(count));
         }
 
-        Build(min, max, count);
+        Build(min.ForReading(), max.ForReading(), count);
         _pairCount = 0;
-        for (var i = 0; i < count; i++)
+
+        // The ordinary boxes in slot order (the cells' order) when the table is dense, else in index order.
+        var visits = _buckets.Dense ? _ordinaryCount : count;
+        for (var v = 0; v < visits; v++)
         {
-            if (_bucketOf[i] < 0)
+            var slot = _buckets.Dense ? v : _slotOf[v];
+            if (slot >= _ordinaryCount)
             {
                 continue; // a large box: paired below
             }
 
-            UnpackCell(_cells[i], out var cx, out var cy, out var cz);
+            var i = _boxOf[slot];
+            UnpackCell(_slotCell[slot], out var cx, out var cy, out var cz);
             for (var offset = 0; offset < 14; offset++)
             {
                 // Its own cell (later boxes only), then the 13 neighbours of the forward half (each pair of cells once).
-                var cell = PackCell(cx + _forward[3 * offset], cy + _forward[(3 * offset) + 1], cz + _forward[(3 * offset) + 2]);
-                var bucket = Bucket(cell);
-                for (var k = _bucketStart[bucket]; k < _bucketStart[bucket + 1]; k++)
+                long x = cx + _offsets[3 * offset], y = cy + _offsets[(3 * offset) + 1], z = cz + _offsets[(3 * offset) + 2];
+                var cell = PackCell(x, y, z);
+                var bucket = _buckets.Of(x, y, z, cell);
+                if (bucket < 0)
                 {
-                    var j = _sorted[k];
-                    if ((offset > 0 || j > i) && _cells[j] == cell && Overlap(i, j))
+                    continue; // outside the dense box: no box there
+                }
+
+                for (var q = _bucketStart[bucket]; q < _bucketStart[bucket + 1]; q++)
+                {
+                    var j = _boxOf[q];
+                    if ((offset > 0 || j > i) && _slotCell[q] == cell && Overlap(slot, q))
                     {
                         Emit(Math.Min(i, j), Math.Max(i, j), filter);
                     }
@@ -100,11 +127,12 @@ public sealed class SpatialHashGrid
 
         for (var l = 0; l < _largeCount; l++)
         {
-            var i = _large[l];
+            var slot = _ordinaryCount + l;
+            var i = _boxOf[slot];
             for (var j = 0; j < count; j++)
             {
                 // Against every ordinary box, and against the large boxes after it (each such pair once).
-                if (j != i && (_bucketOf[j] >= 0 || j > i) && Overlap(i, j))
+                if (j != i && (_slotOf[j] < _ordinaryCount || j > i) && Overlap(slot, _slotOf[j]))
                 {
                     Emit(Math.Min(i, j), Math.Max(i, j), filter);
                 }
@@ -112,50 +140,39 @@ public sealed class SpatialHashGrid
         }
     }
 
-    private void Build(ReadOnlySpan<double> min, ReadOnlySpan<double> max, int count)
+    /// <summary>
+    /// The cell size, each ordinary box's cell, the table (<see cref="CellBuckets"/>), and the slots: the ordinary boxes
+    /// counting-sorted by bucket, then the large ones in index order.
+    /// </summary>
+    private void Build(Span<double> min, Span<double> max, int count)
     {
-        if (_bucketOf.Length < count)
+        if (_slotOf.Length < count)
         {
-            _min = new double[3 * count];
-            _max = new double[3 * count];
-            _cells = new long[count];
-            _sorted = new int[count];
+            _slotMin = new double[3 * count];
+            _slotMax = new double[3 * count];
+            _slotCell = new long[count];
+            _boxOf = new int[count];
+            _slotOf = new int[count];
+            _cellOf = new long[count];
             _bucketOf = new int[count];
-            _large = new int[count];
         }
 
-        var buckets = 2;
-        while (buckets < 2 * count)
+        if (_bucketStart.Length < CellBuckets.Capacity(count) + 1)
         {
-            buckets *= 2;
+            _bucketStart = new int[CellBuckets.Capacity(count) + 1];
         }
 
-        if (_bucketStart.Length < buckets + 1)
-        {
-            _bucketStart = new int[buckets + 1];
-        }
-
-        _mask = buckets - 1;
-        _count = count;
-        var lo = min.ForReading();
-        var hi = max.ForReading();
         var sum = 0.0;
-        for (var k = 0; k < 3 * count; k++)
-        {
-            _min[k] = lo[k];
-            _max[k] = hi[k];
-        }
-
         for (var i = 0; i < count; i++)
         {
-            sum += Extent(i);
+            sum += Extent(min, max, i);
         }
 
         var limit = count == 0 ? 0.0 : LargeFactor * sum / count;
         var cell = 0.0;
         for (var i = 0; i < count; i++)
         {
-            var extent = Extent(i);
+            var extent = Extent(min, max, i);
             if (extent <= limit)
             {
                 cell = Math.Max(cell, extent);
@@ -164,25 +181,52 @@ public sealed class SpatialHashGrid
 
         _cellSize = cell > 0.0 ? cell : 1.0;
         var inverse = 1.0 / _cellSize;
-        Array.Clear(_bucketStart, 0, buckets + 1);
+        _ordinaryCount = 0;
         _largeCount = 0;
+        long loX = long.MaxValue, loY = long.MaxValue, loZ = long.MaxValue;
+        long hiX = long.MinValue, hiY = long.MinValue, hiZ = long.MinValue;
         for (var i = 0; i < count; i++)
         {
-            if (Extent(i) > limit)
+            if (Extent(min, max, i) > limit)
             {
                 _bucketOf[i] = -1;
-                _large[_largeCount++] = i;
+                _largeCount++;
                 continue;
             }
 
             var o = 3 * i;
-            _cells[i] = PackCell(
-                CellCoordinate(0.5 * (_min[o] + _max[o]) * inverse),
-                CellCoordinate(0.5 * (_min[o + 1] + _max[o + 1]) * inverse),
-                CellCoordinate(0.5 * (_min[o + 2] + _max[o + 2]) * inverse));
-            var bucket = Bucket(_cells[i]);
-            _bucketOf[i] = bucket;
-            _bucketStart[bucket + 1]++;
+            var x = CellCoordinate(0.5 * (min[o] + max[o]) * inverse);
+            var y = CellCoordinate(0.5 * (min[o + 1] + max[o + 1]) * inverse);
+            var z = CellCoordinate(0.5 * (min[o + 2] + max[o + 2]) * inverse);
+            (loX, loY, loZ) = (Math.Min(loX, x), Math.Min(loY, y), Math.Min(loZ, z));
+            (hiX, hiY, hiZ) = (Math.Max(hiX, x), Math.Max(hiY, y), Math.Max(hiZ, z));
+            _cellOf[i] = PackCell(x, y, z);
+            _bucketOf[i] = 0;
+            _ordinaryCount++;
+        }
+
+        _buckets.Fit(loX, loY, loZ, hiX, hiY, hiZ, _ordinaryCount);
+        for (var k = 0; k < 14; k++)
+        {
+            // The forward half in the numbering's order, so that a dense table's cells meet their neighbours only
+            // after them (a hashed table keeps x, y, z).
+            for (var rank = 0; rank < 3; rank++)
+            {
+                _offsets[(3 * k) + _buckets.Axis(rank)] = _forward[(3 * k) + 2 - rank];
+            }
+        }
+
+        var buckets = _buckets.Count;
+        Array.Clear(_bucketStart, 0, buckets + 1);
+        for (var i = 0; i < count; i++)
+        {
+            if (_bucketOf[i] >= 0)
+            {
+                UnpackCell(_cellOf[i], out var x, out var y, out var z);
+                var bucket = _buckets.Of(x, y, z, _cellOf[i]);
+                _bucketOf[i] = bucket;
+                _bucketStart[bucket + 1]++;
+            }
         }
 
         for (var b = 0; b < buckets; b++)
@@ -190,13 +234,20 @@ public sealed class SpatialHashGrid
             _bucketStart[b + 1] += _bucketStart[b];
         }
 
-        // Counting sort by bucket: a second pass places each box after those of lower index in its bucket.
+        // Counting sort by bucket: a second pass places each box after those of lower index in its bucket; the large
+        // boxes take the slots after the ordinary ones. Each slot gets a copy of its box.
+        var large = _ordinaryCount;
         for (var i = 0; i < count; i++)
         {
             var bucket = _bucketOf[i];
-            if (bucket >= 0)
+            var slot = bucket >= 0 ? _bucketStart[bucket]++ : large++;
+            _boxOf[slot] = i;
+            _slotOf[i] = slot;
+            _slotCell[slot] = bucket >= 0 ? _cellOf[i] : 0;
+            for (var c = 0; c < 3; c++)
             {
-                _sorted[_bucketStart[bucket]++] = i;
+                _slotMin[(3 * slot) + c] = min[(3 * i) + c];
+                _slotMax[(3 * slot) + c] = max[(3 * i) + c];
             }
         }
 
@@ -227,20 +278,21 @@ public sealed class SpatialHashGrid
         _pairCount++;
     }
 
+    /// <summary>Whether the boxes in slots <paramref name="a"/> and <paramref name="b"/> overlap.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private bool Overlap(int i, int j)
+    private bool Overlap(int a, int b)
     {
-        var a = 3 * i;
-        var b = 3 * j;
-        return _min[a] <= _max[b] && _min[b] <= _max[a]
-            && _min[a + 1] <= _max[b + 1] && _min[b + 1] <= _max[a + 1]
-            && _min[a + 2] <= _max[b + 2] && _min[b + 2] <= _max[a + 2];
+        a *= 3;
+        b *= 3;
+        return _slotMin[a] <= _slotMax[b] && _slotMin[b] <= _slotMax[a]
+            && _slotMin[a + 1] <= _slotMax[b + 1] && _slotMin[b + 1] <= _slotMax[a + 1]
+            && _slotMin[a + 2] <= _slotMax[b + 2] && _slotMin[b + 2] <= _slotMax[a + 2];
     }
 
-    private double Extent(int i)
+    private static double Extent(Span<double> min, Span<double> max, int i)
     {
         var o = 3 * i;
-        return Math.Max(_max[o] - _min[o], Math.Max(_max[o + 1] - _min[o + 1], _max[o + 2] - _min[o + 2]));
+        return Math.Max(max[o] - min[o], Math.Max(max[o + 1] - min[o + 1], max[o + 2] - min[o + 2]));
     }
 
     private static long CellCoordinate(double scaled)
@@ -258,13 +310,5 @@ public sealed class SpatialHashGrid
         x = ((cell >> 42) & mask) - (1L << 20);
         y = ((cell >> 21) & mask) - (1L << 20);
         z = (cell & mask) - (1L << 20);
-    }
-
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private int Bucket(long cell)
-    {
-        // Fibonacci hashing of the packed cell: the high bits of cell * 2^64 / phi.
-        var hash = unchecked((ulong)cell * 0x9E3779B97F4A7C15UL);
-        return (int)(hash >> 40) & _mask;
     }
 }

@@ -9,11 +9,11 @@ namespace ParticlePhysics.Tests.Contacts;
 public class BroadPhaseTests
 {
     [Theory]
-    [InlineData(1, 0.1, 0)]
-    [InlineData(500, 0.05, 0)]
-    [InlineData(2000, 0.02, 5)]
-    [InlineData(3000, 0.2, 40)]
-    public void The_grid_finds_exactly_the_pairs_brute_force_finds(int count, double size, int large)
+    [InlineData(1, 0.1, 0, true)]
+    [InlineData(500, 0.05, 0, false)]
+    [InlineData(2000, 0.02, 5, false)]
+    [InlineData(3000, 0.2, 40, true)]
+    public void The_grid_finds_exactly_the_pairs_brute_force_finds(int count, double size, int large, bool dense)
     {
         var state = (uint)(count + 17);
         var min = new double[3 * count];
@@ -37,6 +37,7 @@ public class BroadPhaseTests
 
         var grid = new SpatialHashGrid();
         grid.FindPairs(min, max, count);
+        Assert.Equal(dense, grid.Dense); // both tables: a dense box of cells, and a hash when the cells are spread thinly
         var found = new HashSet<(int, int)>();
         for (var p = 0; p < grid.PairCount; p++)
         {
@@ -47,6 +48,30 @@ public class BroadPhaseTests
         var brute = BruteForce(min, max, count);
         Assert.Equal(brute.Count, found.Count);
         Assert.True(brute.SetEquals(found));
+    }
+
+    [Fact]
+    public void A_dense_table_lists_each_boxs_pairs_close_together_wherever_the_boxes_are_stored()
+    {
+        // A pile of 20 x 3 x 20 overlapping boxes (18 x 2 x 18 cells) stored in a shuffled order. In the order of the
+        // cells a box's pairs all come within one slab of the slowest axis and a few cells (about 1 / 18 of the list;
+        // at most 3 / 18 here); in index order (the hashed table's, forced by one far box that touches nothing) they
+        // spread over the whole list.
+        var (min, max) = ShuffledLattice(20, 3, 20, out var count);
+        var grid = new SpatialHashGrid();
+        grid.FindPairs(min, max, count);
+        Assert.True(grid.Dense);
+        var dense = Pairs(grid);
+        var window = WidestWindow(grid, count);
+        Assert.True(window <= 3 * grid.PairCount / 18, $"a box's pairs span {window} of {grid.PairCount} places");
+
+        var farMin = min.Concat(new[] { 1e6, 1e6, 1e6 }).ToArray();
+        var farMax = max.Concat(new[] { 1e6 + 1, 1e6 + 1, 1e6 + 1 }).ToArray();
+        grid.FindPairs(farMin, farMax, count + 1);
+        Assert.False(grid.Dense);
+        Assert.True(dense.SetEquals(Pairs(grid)));
+        Assert.True(dense.SetEquals(BruteForce(min, max, count)));
+        Assert.True(WidestWindow(grid, count) > grid.PairCount / 2, "index order spreads a box's pairs over the list");
     }
 
     [Fact]
@@ -78,6 +103,57 @@ public class BroadPhaseTests
         Assert.Throws<ArgumentException>(() => grid.FindPairs(new double[3], new double[3], -1));
         grid.FindPairs(Array.Empty<double>(), Array.Empty<double>(), 0);
         Assert.Equal(0, grid.PairCount);
+    }
+
+    /// <summary>Unit boxes on a lattice of spacing 0.9 (so that neighbours, diagonals included, overlap), in a shuffled order.</summary>
+    private static (double[] Min, double[] Max) ShuffledLattice(int nx, int ny, int nz, out int count)
+    {
+        count = nx * ny * nz;
+        var order = Enumerable.Range(0, count).ToArray();
+        var state = 12345u;
+        for (var k = count - 1; k > 0; k--)
+        {
+            var r = (int)((ObstacleTests.Next(ref state) + 1) * 0.5 * (k + 1)) % (k + 1);
+            (order[k], order[r]) = (order[r], order[k]);
+        }
+
+        var min = new double[3 * count];
+        var max = new double[3 * count];
+        for (var site = 0; site < count; site++)
+        {
+            var i = order[site];
+            var centre = new[] { 0.9 * (site % nx), 0.9 * (site / nx % ny), 0.9 * (site / (nx * ny)) };
+            for (var c = 0; c < 3; c++)
+            {
+                min[(3 * i) + c] = centre[c] - 0.5;
+                max[(3 * i) + c] = centre[c] + 0.5;
+            }
+        }
+
+        return (min, max);
+    }
+
+    private static HashSet<(int, int)> Pairs(SpatialHashGrid grid) =>
+        Enumerable.Range(0, grid.PairCount).Select(p => (grid.First[p], grid.Second[p])).ToHashSet();
+
+    /// <summary>The most places between the first and the last pair of one box in the list.</summary>
+    private static int WidestWindow(SpatialHashGrid grid, int count)
+    {
+        var first = Enumerable.Repeat(int.MaxValue, count).ToArray();
+        var last = new int[count];
+        for (var p = 0; p < grid.PairCount; p++)
+        {
+            foreach (var i in new[] { grid.First[p], grid.Second[p] })
+            {
+                if (i < count)
+                {
+                    first[i] = Math.Min(first[i], p);
+                    last[i] = Math.Max(last[i], p);
+                }
+            }
+        }
+
+        return Enumerable.Range(0, count).Where(i => first[i] <= last[i]).Max(i => last[i] - first[i]);
     }
 
     private static HashSet<(int, int)> BruteForce(double[] min, double[] max, int count)
