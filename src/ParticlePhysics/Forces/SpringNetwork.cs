@@ -398,27 +398,90 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             }
             else
             {
+                // The arithmetic of SpringLinearization.PairWithForce, written out with locals only (through the
+                // helper's output pointers the loop ran slower than the three separate loops): the same operations.
                 var count = _pairs.Count;
-                var y = stackalloc double[6];
-                var spring = y + 3;
+                var y = stackalloc double[6]; // (for a spring of zero length only)
                 for (var s = 0; s < count; s++)
                 {
                     long a = 3 * first[s], b = 3 * second[s];
                     var q = lin + (LinearStride * s);
-                    SpringLinearization.PairWithForce(x, v, a, b, p + (PairStride * s), positionScale, velocityScale, q, y, spring);
-                    f[a] -= spring[0];
-                    f[a + 1] -= spring[1];
-                    f[a + 2] -= spring[2];
-                    f[b] += spring[0];
-                    f[b + 1] += spring[1];
-                    f[b + 2] += spring[2];
-                    into[a] += y[0];
-                    into[a + 1] += y[1];
-                    into[a + 2] += y[2];
-                    into[b] -= y[0];
-                    into[b + 1] -= y[1];
-                    into[b + 2] -= y[2];
-                    SpringLinearization.AddBlockToBoth(d + (9L * first[s]), d + (9L * second[s]), q);
+                    var c = p + (PairStride * s);
+                    double k = c[0], restLength = c[1], damping = c[2];
+                    double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
+                    double dvx = v[a] - v[b], dvy = v[a + 1] - v[b + 1], dvz = v[a + 2] - v[b + 2];
+                    var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
+                    double yx, yy, yz, fx, fy, fz;
+                    if (lengthSquared == 0.0)
+                    {
+                        SpringLinearization.PairWithForce(x, v, a, b, c, positionScale, velocityScale, q, y, y + 3);
+                        (yx, yy, yz, fx, fy, fz) = (y[0], y[1], y[2], y[3], y[4], y[5]);
+                    }
+                    else
+                    {
+                        var length = Math.Sqrt(lengthSquared);
+                        var inverse = 1.0 / length;
+                        var transverse = Math.Max(0.0, 1.0 - (restLength * inverse));
+                        double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
+                        var iso = k * transverse;
+                        var axial = k * (1.0 - transverse);
+                        var t = -((positionScale * k * (1.0 - transverse)) + (velocityScale * damping));
+                        var sIso = -positionScale * k * transverse;
+                        q[0] = ux;
+                        q[1] = uy;
+                        q[2] = uz;
+                        q[3] = sIso;
+                        q[4] = t;
+                        var closing = (ux * dvx) + (uy * dvy) + (uz * dvz);
+                        var along = axial * closing;
+                        yx = -((iso * dvx) + (along * ux));
+                        yy = -((iso * dvy) + (along * uy));
+                        yz = -((iso * dvz) + (along * uz));
+                        var magnitude = (k * (length - restLength)) + (damping * closing);
+                        fx = magnitude * ux;
+                        fy = magnitude * uy;
+                        fz = magnitude * uz;
+
+                        // The diagonal blocks s I + t u u^T at both ends (SpringLinearization.AddBlockToBoth).
+                        double xx = sIso + (t * ux * ux), yyb = sIso + (t * uy * uy), zz = sIso + (t * uz * uz);
+                        double xy = t * ux * uy, xz = t * ux * uz, yzb = t * uy * uz;
+                        double* da = d + (9L * first[s]), db = d + (9L * second[s]);
+                        da[0] += xx;
+                        da[1] += xy;
+                        da[2] += xz;
+                        da[3] += xy;
+                        da[4] += yyb;
+                        da[5] += yzb;
+                        da[6] += xz;
+                        da[7] += yzb;
+                        da[8] += zz;
+                        db[0] += xx;
+                        db[1] += xy;
+                        db[2] += xz;
+                        db[3] += xy;
+                        db[4] += yyb;
+                        db[5] += yzb;
+                        db[6] += xz;
+                        db[7] += yzb;
+                        db[8] += zz;
+                    }
+
+                    f[a] -= fx;
+                    f[a + 1] -= fy;
+                    f[a + 2] -= fz;
+                    f[b] += fx;
+                    f[b + 1] += fy;
+                    f[b + 2] += fz;
+                    into[a] += yx;
+                    into[a + 1] += yy;
+                    into[a + 2] += yz;
+                    into[b] -= yx;
+                    into[b + 1] -= yy;
+                    into[b + 2] -= yz;
+                    if (lengthSquared == 0.0)
+                    {
+                        SpringLinearization.AddBlockToBoth(d + (9L * first[s]), d + (9L * second[s]), q);
+                    }
                 }
             }
         }

@@ -157,11 +157,6 @@ internal sealed unsafe class AggregationMultigrid
             _fine.Set(r, z, dv, p, s, w, inv, masses, aggregate, memberStart, members, first.Count);
             _fine.SetCoarse(coarseB, coarseX, coarseInverse, smoothed ? smoothedX : null, smoothed);
             _fine.Operation = FinePasses.Prolong;
-            if (smoothed)
-            {
-                first.BindPostSmoothing(_levels[1]);
-            }
-
             _fine.Level = smoothed ? first : null;
             Run(runner, _fine);
             _fine.Level = null;
@@ -208,8 +203,9 @@ internal sealed unsafe class AggregationMultigrid
     /// <summary>
     /// One V-cycle on coarse level l, X ~ A_l^-1 B, from a level whose pre-smoothing from zero, X = D^-1 B, is done (the
     /// pass above it did it as it restricted): the residual restricted to the next level (and the next level's own
-    /// pre-smoothing) in one pass, the cycle below, then the post-smoothing X += P X_next, X += D^-1 (B - A X) in one
-    /// pass. Level 1's post-smoothing is left to <see cref="FinishApply"/>, which fuses it with the fine level.
+    /// pre-smoothing) in one pass, the cycle below, the prolongation X += P X_next (three additions per row, on the
+    /// calling thread: cheaper than a hand-off), then the post-smoothing X += D^-1 (B - A X) in one pass. Level 1's
+    /// post-smoothing is left to <see cref="FinishApply"/>, which fuses it with the fine level.
     /// </summary>
     private void Cycle(int l, IParallelRunner? runner)
     {
@@ -223,6 +219,7 @@ internal sealed unsafe class AggregationMultigrid
         var next = _levels[l + 1];
         level.RestrictResidual(next, smoothNext: l + 2 < _levels.Length, runner);
         Cycle(l + 1, runner);
+        level.Prolong(next);
         if (l > 0)
         {
             level.PostSmooth(next, runner);
@@ -509,7 +506,7 @@ internal sealed unsafe class AggregationMultigrid
 
         public double Beta { get; set; }
 
-        /// <summary>Level 1 when its post-smoothing is fused into the prolongation (bound to its next level), else null.</summary>
+        /// <summary>Level 1 when its post-smoothing is fused into the prolongation into z (it is not the coarsest), else null.</summary>
         public Level? Level { get; set; }
 
         public void Set(
@@ -965,7 +962,23 @@ internal sealed unsafe class AggregationMultigrid
             RunPass(ResidualRestrictPass, next.Count, runner);
         }
 
-        /// <summary>The post-smoothing X' = X + P X_next, then X' + D^-1 (B - A X'), in one pass (X' formed on the fly).</summary>
+        /// <summary>X += P X_next: each row adds its aggregate's correction from the level below, on the calling thread.</summary>
+        public void Prolong(Level next)
+        {
+            fixed (double* x = X, nextX = next.X)
+            fixed (int* aggregate = _nextAggregate)
+            {
+                for (var i = 0; i < Count; i++)
+                {
+                    double* xi = x + (3L * i), ci = nextX + (3L * aggregate[i]);
+                    xi[0] += ci[0];
+                    xi[1] += ci[1];
+                    xi[2] += ci[2];
+                }
+            }
+        }
+
+        /// <summary>The post-smoothing sweep X + D^-1 (B - A X) after the prolongation, in one pass.</summary>
         public void PostSmooth(Level next, IParallelRunner? runner)
         {
             _next = next;
@@ -973,41 +986,33 @@ internal sealed unsafe class AggregationMultigrid
             SwapSmoothed();
         }
 
-        /// <summary>Binds the level below for <see cref="PostSmoothRow"/>.</summary>
-        public void BindPostSmoothing(Level next) => _next = next;
-
         /// <summary>Makes the buffer the post-smoothing wrote into this level's X.</summary>
         public void SwapSmoothed() => (X, _smoothed) = (_smoothed, X);
 
-        /// <summary>Row i of the post-smoothing (see <see cref="PostSmooth"/>) into <paramref name="output"/> (3 values).</summary>
+        /// <summary>Row i of the post-smoothing sweep (see <see cref="PostSmooth"/>) into <paramref name="output"/> (3 values).</summary>
         public void PostSmoothRow(int i, double* output)
         {
-            fixed (double* b = B, x = X, inverse = Inverse, values = Values, nextX = _next!.X)
-            fixed (int* rowStart = _rowStart, column = _column, aggregate = _nextAggregate)
+            fixed (double* b = B, x = X, inverse = Inverse, values = Values)
+            fixed (int* rowStart = _rowStart, column = _column)
             {
-                PostSmoothRowCore(i, values, rowStart, column, b, x, nextX, aggregate, inverse, output);
+                PostSmoothRowCore(i, values, rowStart, column, b, x, inverse, output);
             }
         }
 
-        /// <summary>
-        /// With X' = X + P X_next: output = X'_i + D_i^-1 (B_i - sum_j A_ij X'_j), the neighbours' X' formed on the fly
-        /// from X and X_next (neither is written during the pass).
-        /// </summary>
+        /// <summary>output = X_i + D_i^-1 (B_i - sum_j A_ij X_j) (X read only: the rows still to come need the old one).</summary>
         private void PostSmoothRowCore(
-            int i, double* values, int* rowStart, int* column, double* b, double* x, double* nextX, int* aggregate,
-            double* inverse, double* output)
+            int i, double* values, int* rowStart, int* column, double* b, double* x, double* inverse, double* output)
         {
-            double* d = values + (9L * i), xi = x + (3L * i), ci = nextX + (3L * aggregate[i]);
-            double x0 = xi[0] + ci[0], x1 = xi[1] + ci[1], x2 = xi[2] + ci[2];
+            double* d = values + (9L * i), xi = x + (3L * i);
+            double x0 = xi[0], x1 = xi[1], x2 = xi[2];
             var bi = b + (3L * i);
             var r0 = bi[0] - ((d[0] * x0) + (d[1] * x1) + (d[2] * x2));
             var r1 = bi[1] - ((d[3] * x0) + (d[4] * x1) + (d[5] * x2));
             var r2 = bi[2] - ((d[6] * x0) + (d[7] * x1) + (d[8] * x2));
             for (var k = rowStart[i]; k < rowStart[i + 1]; k++)
             {
-                var j = column[k];
-                double* m = values + (9L * (Count + k)), xj = x + (3L * j), cj = nextX + (3L * aggregate[j]);
-                double y0 = xj[0] + cj[0], y1 = xj[1] + cj[1], y2 = xj[2] + cj[2];
+                double* m = values + (9L * (Count + k)), xj = x + (3L * column[k]);
+                double y0 = xj[0], y1 = xj[1], y2 = xj[2];
                 r0 -= (m[0] * y0) + (m[1] * y1) + (m[2] * y2);
                 r1 -= (m[3] * y0) + (m[4] * y1) + (m[5] * y2);
                 r2 -= (m[6] * y0) + (m[7] * y1) + (m[8] * y2);
@@ -1031,7 +1036,7 @@ internal sealed unsafe class AggregationMultigrid
                 {
                     for (var i = begin; i < end; i++)
                     {
-                        PostSmoothRowCore(i, values, rowStart, column, b, x, nextX, aggregate, inverse, smoothed + (3L * i));
+                        PostSmoothRowCore(i, values, rowStart, column, b, x, inverse, smoothed + (3L * i));
                     }
 
                     return;
