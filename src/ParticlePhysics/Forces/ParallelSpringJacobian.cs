@@ -210,7 +210,7 @@ internal sealed unsafe class ParallelSpringJacobian
             var (begin, end) = Chunk.Range(chunk, chunkCount, _particles);
             for (var i = begin; i < end; i++)
             {
-                double* f = _forces + (3L * i), y = _into + (3L * i), block = _blocks + (9L * i);
+                double* f = _forces + (3L * i), y = _into + (3L * i);
                 double fx = f[0], fy = f[1], fz = f[2], yx = y[0], yy = y[1], yz = y[2];
                 for (var e = _start[i]; e < _start[i + 1]; e++)
                 {
@@ -236,7 +236,6 @@ internal sealed unsafe class ParallelSpringJacobian
                         yz -= sy[2];
                     }
 
-                    SpringLinearization.AddBlock(block, _linear + (5L * s));
                 }
 
                 f[0] = fx;
@@ -246,6 +245,8 @@ internal sealed unsafe class ParallelSpringJacobian
                 y[1] = yy;
                 y[2] = yz;
             }
+
+            SpringLinearization.GatherBlocks(_blocks, _linear, _start, _incident, begin, end);
         }
     }
 
@@ -299,14 +300,7 @@ internal sealed unsafe class ParallelSpringJacobian
         public void Execute(int chunk, int chunkCount)
         {
             var (begin, end) = Chunk.Range(chunk, chunkCount, _particles);
-            for (var i = begin; i < end; i++)
-            {
-                var block = _blocks + (9L * i);
-                for (var e = _start[i]; e < _start[i + 1]; e++)
-                {
-                    SpringLinearization.AddBlock(block, _linear + (5 * (_incident[e] >> 1)));
-                }
-            }
+            SpringLinearization.GatherBlocks(_blocks, _linear, _start, _incident, begin, end);
         }
     }
 }

@@ -441,29 +441,6 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
                         fx = magnitude * ux;
                         fy = magnitude * uy;
                         fz = magnitude * uz;
-
-                        // The diagonal blocks s I + t u u^T at both ends (SpringLinearization.AddBlockToBoth).
-                        double xx = sIso + (t * ux * ux), yyb = sIso + (t * uy * uy), zz = sIso + (t * uz * uz);
-                        double xy = t * ux * uy, xz = t * ux * uz, yzb = t * uy * uz;
-                        double* da = d + (9L * first[s]), db = d + (9L * second[s]);
-                        da[0] += xx;
-                        da[1] += xy;
-                        da[2] += xz;
-                        da[3] += xy;
-                        da[4] += yyb;
-                        da[5] += yzb;
-                        da[6] += xz;
-                        da[7] += yzb;
-                        da[8] += zz;
-                        db[0] += xx;
-                        db[1] += xy;
-                        db[2] += xz;
-                        db[3] += xy;
-                        db[4] += yyb;
-                        db[5] += yzb;
-                        db[6] += xz;
-                        db[7] += yzb;
-                        db[8] += zz;
                     }
 
                     f[a] -= fx;
@@ -478,10 +455,16 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
                     into[b] -= yx;
                     into[b + 1] -= yy;
                     into[b + 2] -= yz;
-                    if (lengthSquared == 0.0)
-                    {
-                        SpringLinearization.AddBlockToBoth(d + (9L * first[s]), d + (9L * second[s]), q);
-                    }
+                }
+
+                // The diagonal blocks, gathered per particle from the linearisation just written (the same sums as
+                // AddDiagonalBlocks' loop, spring by spring, and far fewer stores).
+                _parallel ??= new ParallelSpringForces();
+                _parallel.Incidence.Update(_pairs, _system.Count);
+                var incidence = _parallel.Incidence;
+                fixed (int* start = incidence.Start, incident = incidence.Incident)
+                {
+                    SpringLinearization.GatherBlocks(d, lin, start, incident, 0, _system.Count);
                 }
             }
         }
