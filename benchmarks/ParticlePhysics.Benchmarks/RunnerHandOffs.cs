@@ -4,6 +4,7 @@ using System.Diagnostics;
 using System.Globalization;
 using System.IO;
 using System.Linq;
+using System.Threading;
 using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics.Benchmarks;
@@ -17,6 +18,9 @@ namespace ParticlePhysics.Benchmarks;
 /// and with <see cref="WorkerThreadRunner"/> as shipped, in alternating rounds so that all see the same load.
 /// Printed per case: wall time per run (fastest round, median of rounds), the process's CPU time per run, and the
 /// medians of the per-round ratios against one core and against the previous runner.
+/// <c>--engine xpbd|implicit-euler [--n 64]</c>: the same four on the engine instead, one simulated second from rest
+/// per round (xpbd: 60 frames of 10 substeps; implicit Euler: 60 frames at tolerance 1e-3 from a cold solver), each
+/// runner's state checked bit-identical to one core's.
 /// </summary>
 internal static class RunnerHandOffs
 {
@@ -24,6 +28,11 @@ internal static class RunnerHandOffs
     {
         var parallelism = int.Parse(Option(args, "--parallelism") ?? "2", CultureInfo.InvariantCulture);
         var rounds = int.Parse(Option(args, "--rounds") ?? "5", CultureInfo.InvariantCulture);
+        if (Option(args, "--engine") is { } engine)
+        {
+            return RunEngine(engine, int.Parse(Option(args, "--n") ?? "64", CultureInfo.InvariantCulture), parallelism, rounds);
+        }
+
         var milliseconds = double.Parse(Option(args, "--ms") ?? "150", CultureInfo.InvariantCulture);
         var perMicrosecond = Calibrate();
         Console.WriteLine(string.Create(
@@ -33,8 +42,11 @@ internal static class RunnerHandOffs
         Console.WriteLine("per run: serial work on the calling thread, then the chunks; us per run: fastest round (median); CPU: the process's CPU time per run (median);");
         Console.WriteLine("x one core, x previous: medians of the per-round ratios of wall time (above 1: faster)");
 
+        // A chunk time of -1: the rendezvous, one chunk per thread, each waiting until all have started, so that every
+        // thread must take part: the pure cost of handing a run to the workers and back (no one-core figure).
         var cases = new (double ChunkMicroseconds, int Chunks, double SerialMicroseconds)[]
         {
+            (-1, parallelism, 0),
             (0, parallelism, 0),
             (2.5, 2 * parallelism, 1),
             (5, 2 * parallelism, 5),
@@ -52,7 +64,8 @@ internal static class RunnerHandOffs
 
     private static void RunCase(int parallelism, int rounds, double milliseconds, double perMicrosecond, double chunkMicroseconds, int chunks, double serialMicroseconds)
     {
-        var work = new BusyWork((long)Math.Round(chunkMicroseconds * perMicrosecond));
+        var rendezvous = chunkMicroseconds < 0;
+        var work = new BusyWork(rendezvous ? 0 : (long)Math.Round(chunkMicroseconds * perMicrosecond), rendezvous);
         var serial = (long)Math.Round(serialMicroseconds * perMicrosecond);
         using var previous = new PreviousWorkerThreadRunner(parallelism);
         using var blocking = new WorkerThreadRunner(parallelism, TimeSpan.Zero);
@@ -64,7 +77,7 @@ internal static class RunnerHandOffs
             ("spin limit 0", blocking),
             (string.Create(CultureInfo.InvariantCulture, $"adaptive, {adaptive.SpinLimit.TotalMilliseconds * 1000} us"), adaptive),
         };
-        var oneCoreMicroseconds = serialMicroseconds + (chunks * chunkMicroseconds);
+        var oneCoreMicroseconds = serialMicroseconds + (chunks * Math.Max(0, chunkMicroseconds));
         var runs = (int)Math.Max(200, milliseconds * 1000 / Math.Max(2, oneCoreMicroseconds));
         var wall = runners.Select(_ => new double[rounds]).ToArray();
         var cpu = runners.Select(_ => new double[rounds]).ToArray();
@@ -81,9 +94,11 @@ internal static class RunnerHandOffs
             }
         }
 
-        Console.WriteLine(string.Create(
-            CultureInfo.InvariantCulture,
-            $"{chunks} chunks of {chunkMicroseconds} us after {serialMicroseconds} us of serial work ({oneCoreMicroseconds} us on one core), {runs} runs per round:"));
+        Console.WriteLine(rendezvous
+            ? $"{chunks} chunks that wait for each other (every thread takes one), {runs} runs per round:"
+            : string.Create(
+                CultureInfo.InvariantCulture,
+                $"{chunks} chunks of {chunkMicroseconds} us after {serialMicroseconds} us of serial work ({oneCoreMicroseconds} us on one core), {runs} runs per round:"));
         for (var k = 0; k < runners.Length; k++)
         {
             Console.WriteLine(string.Create(
@@ -92,9 +107,106 @@ internal static class RunnerHandOffs
         }
     }
 
+    private static int RunEngine(string engine, int n, int parallelism, int rounds)
+    {
+        Action<IParallelRunner?> simulateSecond;
+        Func<double[]> state;
+        if (engine == "xpbd")
+        {
+            var cloth = new XpbdCloth(n);
+            simulateSecond = runner =>
+            {
+                cloth.Runner = runner;
+                cloth.SimulateSecond();
+            };
+            state = () => cloth.System.State.ToArray();
+        }
+        else if (engine == "implicit-euler")
+        {
+            var cloth = new ClothFixture(n);
+            var implicitEuler = new Integrators.ImplicitEuler { Tolerance = 1e-3 };
+            simulateSecond = runner =>
+            {
+                cloth.System.Runner = runner;
+                cloth.Reset();
+                implicitEuler.ReadState(new double[] { 0 }); // a cold solver, as the profile mode and the benchmark
+                for (var frame = 0; frame < 60; frame++)
+                {
+                    cloth.System.Step(implicitEuler, 1.0 / 60);
+                }
+            };
+            state = () => cloth.System.State.ToArray();
+        }
+        else
+        {
+            Console.Error.WriteLine($"error: --engine {engine}: expected xpbd or implicit-euler");
+            return 1;
+        }
+
+        using var previous = new PreviousWorkerThreadRunner(parallelism);
+        using var blocking = new WorkerThreadRunner(parallelism, TimeSpan.Zero);
+        using var adaptive = new WorkerThreadRunner(parallelism);
+        var runners = new (string Name, IParallelRunner? Runner)[]
+        {
+            ("one core", null),
+            ("previous runner", previous),
+            ("spin limit 0", blocking),
+            (string.Create(CultureInfo.InvariantCulture, $"adaptive, {adaptive.SpinLimit.TotalMilliseconds * 1000} us"), adaptive),
+        };
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"{engine}, {n} x {n} cloth, one simulated second from rest per round: one core and {parallelism} threads, {rounds} rounds alternating; load average {LoadAverage()}, {Environment.ProcessorCount} cores"));
+        simulateSecond(null);
+        var expected = state();
+        var same = true;
+        foreach (var (_, runner) in runners)
+        {
+            simulateSecond(runner); // warm-up, and the bits
+            same &= state().AsSpan().SequenceEqual(expected);
+        }
+
+        var wall = runners.Select(_ => new double[rounds]).ToArray();
+        var cpu = runners.Select(_ => new double[rounds]).ToArray();
+        for (var r = 0; r < rounds; r++)
+        {
+            for (var k = 0; k < runners.Length; k++)
+            {
+                (wall[k][r], cpu[k][r]) = Measure(() => simulateSecond(runners[k].Runner));
+            }
+        }
+
+        Console.WriteLine(same ? "same bits with every runner as on one core" : "error: a runner gave DIFFERENT bits from one core");
+        Console.WriteLine("ms per simulated second: fastest round (median); CPU: the process's CPU time (median); x one core, x previous: medians of the per-round ratios of wall time");
+        for (var k = 0; k < runners.Length; k++)
+        {
+            Console.WriteLine(string.Create(
+                CultureInfo.InvariantCulture,
+                $"  {runners[k].Name,-22} {wall[k].Min(),9:F2} ({Median(wall[k]),9:F2}) ms, CPU {Median(cpu[k]),9:F2} ms; x one core {MedianRatio(wall[0], wall[k]),6:F3}, x previous {MedianRatio(wall[1], wall[k]),6:F3}"));
+        }
+
+        return same ? 0 : 1;
+    }
+
+    /// <summary>Wall and process CPU time [ms] of <paramref name="action"/>.</summary>
+    private static (double Wall, double Cpu) Measure(Action action)
+    {
+        using var process = Process.GetCurrentProcess();
+        var cpu = process.TotalProcessorTime;
+        var clock = Stopwatch.StartNew();
+        action();
+        var wall = clock.Elapsed.TotalMilliseconds;
+        process.Refresh();
+        return (wall, (process.TotalProcessorTime - cpu).TotalMilliseconds);
+    }
+
     /// <summary>Wall and process CPU time per run [us] of <paramref name="runs"/> runs.</summary>
     private static (double Wall, double Cpu) Measure(IParallelRunner? runner, BusyWork work, int chunks, long serial, int runs)
     {
+        if (runner is null && work.Rendezvous)
+        {
+            return (double.NaN, double.NaN); // one thread cannot meet itself
+        }
+
         using var process = Process.GetCurrentProcess();
         var cpu = process.TotalProcessorTime;
         var clock = Stopwatch.StartNew();
@@ -159,14 +271,19 @@ internal static class RunnerHandOffs
     {
         private readonly long _iterations;
         private readonly double[] _sink = new double[64 * 8];
+        private long _arrived;
 
         /// <summary>Where the serial work's result goes, so that the compiler keeps the loop.</summary>
         public static double Sink { get; set; }
 
-        public BusyWork(long iterations)
+        public BusyWork(long iterations, bool rendezvous)
         {
             _iterations = iterations;
+            Rendezvous = rendezvous;
         }
+
+        /// <summary>Each chunk waits until every chunk of its run has started (instead of burning).</summary>
+        public bool Rendezvous { get; }
 
         public static double Burn(long iterations, double seed)
         {
@@ -179,6 +296,22 @@ internal static class RunnerHandOffs
             return x;
         }
 
-        public void Execute(int chunk, int chunkCount) => _sink[(chunk & 63) * 8] = Burn(_iterations, chunk);
+        public void Execute(int chunk, int chunkCount)
+        {
+            if (!Rendezvous)
+            {
+                _sink[(chunk & 63) * 8] = Burn(_iterations, chunk);
+                return;
+            }
+
+            // The k-th arrival overall belongs to run (k - 1) / chunkCount: wait for that run's last arrival.
+            var ticket = Interlocked.Increment(ref _arrived);
+            var goal = (((ticket - 1) / chunkCount) + 1) * chunkCount;
+            var spinner = default(SpinWait);
+            while (Volatile.Read(ref _arrived) < goal)
+            {
+                spinner.SpinOnce(sleep1Threshold: -1);
+            }
+        }
     }
 }
