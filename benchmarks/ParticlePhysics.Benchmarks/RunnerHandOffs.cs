@@ -20,14 +20,23 @@ namespace ParticlePhysics.Benchmarks;
 /// medians of the per-round ratios against one core and against the previous runner.
 /// <c>--engine xpbd|implicit-euler [--n 64]</c>: the same four on the engine instead, one simulated second from rest
 /// per round (xpbd: 60 frames of 10 substeps; implicit Euler: 60 frames at tolerance 1e-3 from a cold solver), each
-/// runner's state checked bit-identical to one core's.
+/// runner's state checked bit-identical to one core's. <c>--spin-us N</c>: the adaptive runner with a spin limit of N
+/// microseconds instead of the default.
 /// </summary>
 internal static class RunnerHandOffs
 {
+    /// <summary>The spin limit of the adaptive runner: the library's default, or <c>--spin-us N</c>.</summary>
+    private static TimeSpan _spinLimit = WorkerThreadRunner.DefaultSpinLimit;
+
     public static int Run(string[] args)
     {
         var parallelism = int.Parse(Option(args, "--parallelism") ?? "2", CultureInfo.InvariantCulture);
         var rounds = int.Parse(Option(args, "--rounds") ?? "5", CultureInfo.InvariantCulture);
+        if (Option(args, "--spin-us") is { } spin)
+        {
+            _spinLimit = TimeSpan.FromTicks((long)Math.Round(double.Parse(spin, CultureInfo.InvariantCulture) * 10));
+        }
+
         if (Option(args, "--engine") is { } engine)
         {
             return RunEngine(engine, int.Parse(Option(args, "--n") ?? "64", CultureInfo.InvariantCulture), parallelism, rounds);
@@ -69,7 +78,7 @@ internal static class RunnerHandOffs
         var serial = (long)Math.Round(serialMicroseconds * perMicrosecond);
         using var previous = new PreviousWorkerThreadRunner(parallelism);
         using var blocking = new WorkerThreadRunner(parallelism, TimeSpan.Zero);
-        using var adaptive = new WorkerThreadRunner(parallelism);
+        using var adaptive = new WorkerThreadRunner(parallelism, _spinLimit);
         var runners = new (string Name, IParallelRunner? Runner)[]
         {
             ("one core", null),
@@ -145,7 +154,7 @@ internal static class RunnerHandOffs
 
         using var previous = new PreviousWorkerThreadRunner(parallelism);
         using var blocking = new WorkerThreadRunner(parallelism, TimeSpan.Zero);
-        using var adaptive = new WorkerThreadRunner(parallelism);
+        using var adaptive = new WorkerThreadRunner(parallelism, _spinLimit);
         var runners = new (string Name, IParallelRunner? Runner)[]
         {
             ("one core", null),

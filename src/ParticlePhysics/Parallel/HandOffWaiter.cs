@@ -29,13 +29,15 @@ namespace ParticlePhysics.Parallel;
 /// every signal and sleeps again if it is false; a stale signal costs a wake-up, never a wrong result.</para>
 /// <para><b>Whether to spin.</b> Spinning pays when the partner arrives within the spin limit; it costs the limit
 /// in CPU time when it does not, and on a machine with more runnable threads than cores it takes the core that the
-/// partner needs. Each wait therefore records whether it paid: a spin that saw the condition come true did; a spin
-/// that ran out did not; a sleep would have (so the next wait may try spinning) when the waker's signal came within
-/// the limit of the wait's start and the waiter got a core again within the limit after it (a longer delay means
-/// the cores are oversubscribed). A score counts up by one for each wait that paid, up to 16, and is halved by each
-/// that did not; the waiter spins while the score is at least 8. A quiet machine opens the gate after 8 hand-offs;
-/// a wait that did not pay closes it again after a few more, so a busy machine sees at most one spin in a few
-/// hand-offs, the way adaptive mutexes stop spinning on a lock whose holder is not running.</para>
+/// partner needs (a yield hands it over, but then the spinner waits for a core itself). Each wait therefore records
+/// whether it paid: a spin that saw the condition come true within the limit did; a spin that ran out, or that lost
+/// its core for longer than the limit (to a yield or a preemption), did not; a sleep would have (so the next wait
+/// may try spinning) when the waker's signal came within the limit of the wait's start. A slow wake-up after a
+/// prompt signal still counts as paid: it is what a spin would have saved. A score counts up by one for each wait
+/// that paid, up to 16, and is halved by each that did not; the waiter spins while the score is at least 8. A quiet
+/// machine opens the gate after 8 prompt hand-offs; two waits that did not pay close it, and 8 prompt ones in a row
+/// are needed to open it again, so a busy machine, where the partner is often descheduled, sees few spins, the
+/// way adaptive mutexes stop spinning on a lock whose holder is not running.</para>
 /// </remarks>
 internal sealed class HandOffWaiter
 {
@@ -64,9 +66,9 @@ internal sealed class HandOffWaiter
     {
         _spinLimitTicks = spinLimitTicks;
         _adaptive = adaptive;
-        // A spinner yields its core about four times per spin (at least every 2 us), so that a partner waiting for
-        // that core gets it.
-        _yieldTicks = System.Math.Min(spinLimitTicks / 4, Stopwatch.Frequency / 500_000) + 1;
+        // A spinner yields its core about four times per spin (at least every 10 us), so that a partner waiting for
+        // that core gets it; a yield costs about 0.7 us here even when no other thread wants the core.
+        _yieldTicks = System.Math.Min(spinLimitTicks / 4, Stopwatch.Frequency / 100_000) + 1;
     }
 
     /// <summary>A condition a waiter waits for. Once true it stays true until the waiter itself acts.</summary>
@@ -139,7 +141,10 @@ internal sealed class HandOffWaiter
         }
     }
 
-    /// <summary>Spins until the condition is true (true) or the spin limit has passed (false).</summary>
+    /// <summary>
+    /// Spins until the condition is true or the spin limit has passed; true if it came true within the limit (a spin
+    /// that lost its core for longer, to a yield or a preemption, did not pay even if the condition is now true).
+    /// </summary>
     private bool Spin<TCondition>(TCondition condition, long start)
         where TCondition : struct, ICondition
     {
@@ -152,7 +157,7 @@ internal sealed class HandOffWaiter
             {
                 if (condition.IsMet())
                 {
-                    return true;
+                    return Stopwatch.GetTimestamp() - start <= _spinLimitTicks;
                 }
 
                 Thread.SpinWait(PausesPerTest);
@@ -161,7 +166,7 @@ internal sealed class HandOffWaiter
             var now = Stopwatch.GetTimestamp();
             if (now - start > _spinLimitTicks)
             {
-                return condition.IsMet();
+                return false;
             }
 
             if (now - lastYield > _yieldTicks)
@@ -213,8 +218,7 @@ internal sealed class HandOffWaiter
             {
                 if (learn)
                 {
-                    var woken = Stopwatch.GetTimestamp();
-                    Learn(signalledAt - start <= _spinLimitTicks && woken - signalledAt <= _spinLimitTicks);
+                    Learn(signalledAt - start <= _spinLimitTicks);
                 }
 
                 return;

@@ -53,8 +53,11 @@ namespace ParticlePhysics.Parallel;
 /// </remarks>
 public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
 {
-    /// <summary>The spin limit of <see cref="WorkerThreadRunner(int)"/>: 20 microseconds.</summary>
-    public static readonly TimeSpan DefaultSpinLimit = TimeSpan.FromTicks(200);
+    /// <summary>
+    /// The spin limit of <see cref="WorkerThreadRunner(int)"/>: 50 microseconds, about what waking a thread that has
+    /// slept a few tens of microseconds costs on a virtual machine (docs/architecture.md, Parallelism).
+    /// </summary>
+    public static readonly TimeSpan DefaultSpinLimit = TimeSpan.FromTicks(500);
 
     /// <summary>The longest spin limit accepted: 1 ms, about a scheduler time slice.</summary>
     public static readonly TimeSpan MaximumSpinLimit = TimeSpan.FromMilliseconds(1);
