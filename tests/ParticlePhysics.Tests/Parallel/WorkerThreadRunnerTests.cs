@@ -77,6 +77,40 @@ public class WorkerThreadRunnerTests
     }
 
     [Theory]
+    [InlineData(2)]
+    [InlineData(3)]
+    [InlineData(4)]
+    public void Millions_of_tiny_runs_run_every_chunk_exactly_once(int parallelism)
+    {
+        // The shipped runner at full tilt: runs of 1 to 2p + 1 chunks of a few hundred nanoseconds each, back to
+        // back (the workers keep spinning, and take chunks while the caller does), with a 1 ms sleep now and then.
+        using var runner = new WorkerThreadRunner(parallelism);
+        var work = new CheckedWork(64) { Delay = 8 };
+        var seed = (uint)parallelism;
+        long runs = 0;
+        WithWatchdog(() =>
+        {
+            var clock = Stopwatch.StartNew();
+            while (clock.Elapsed < _budget && runs < 5_000_000)
+            {
+                seed = unchecked((seed * 1664525u) + 1013904223u);
+                var chunkCount = 1 + (int)((seed >> 16) % (uint)((2 * parallelism) + 1));
+                work.Expect(chunkCount);
+                runner.Run(work, chunkCount);
+                work.Check(chunkCount, runs);
+                if (++runs % 100_000 == 0)
+                {
+                    Thread.Sleep(1);
+                }
+            }
+        });
+
+        Assert.Equal(0, runner.DoubleSignals);
+        _output.WriteLine($"{parallelism} threads: {runs} runs, {runner.Sleeps} sleeps, {runner.SpinningWaits} spinning waits");
+        Assert.True(runs >= 1000, $"only {runs} runs in {_budget}");
+    }
+
+    [Theory]
     [MemberData(nameof(Configurations))]
     public void Every_worker_wakes_for_a_run_that_needs_all_of_them_at_once(int parallelism, string mode)
     {
