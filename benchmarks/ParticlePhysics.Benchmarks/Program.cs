@@ -20,10 +20,14 @@ namespace ParticlePhysics.Benchmarks;
 /// <item><c>stability [--n 64] [--integrators a,b] [--write] [--verbose]</c>: the largest stable dt of each
 /// integrator (<c>--dt X</c>: one trial at X instead of the search).</item>
 /// <item><c>profile [--n 128] [--seconds 20] [--integrator xpbd|implicit-euler [--steps N] [--runner 2] [--tolerance 1e-3]]</c>:
-/// RK4 cloth steps (or xpbd or implicit-Euler frames) in a loop, for <c>perf record</c> or callgrind.</item>
-/// <item><c>xpbd [--sizes 32,64,128,256] [--rounds 7] [--cores]</c>: a short side-by-side timing of the C xpbd and the
-/// library in one process, alternating (or, with <c>--cores</c>, one core against two), after a bit-for-bit check
-/// (<see cref="XpbdComparison"/>).</item>
+/// RK4 cloth steps (or xpbd or implicit-Euler frames) in a loop, for <c>perf record</c> or callgrind
+/// (with <c>--runner</c>, <see cref="RunnerChoice"/>'s options choose the runner).</item>
+/// <item><c>xpbd [--sizes 32,64,128,256] [--rounds 7] [--cores [--previous-runner | --spin-us N]]</c>: a short
+/// side-by-side timing of the C xpbd and the library in one process, alternating (or, with <c>--cores</c>, one core
+/// against two), after a bit-for-bit check (<see cref="XpbdComparison"/>).</item>
+/// <item><c>runner [--parallelism 2] [--rounds 5] [--ms 150] [--spin-us N] [--engine xpbd|implicit-euler [--n 64]]</c>: the cost
+/// of a hand-off alone (or in the engine), one core against the previous and the current runner, alternating
+/// (<see cref="RunnerHandOffs"/>).</item>
 /// <item><c>quality [--n 64]</c>: each solver's cloth after 5 s against RK4 at a small dt: lowest point, stretch of
 /// the structural springs (<see cref="ClothQuality"/>; deterministic, no timing).</item>
 /// <item><c>costs [batches]</c>: the cost of a step per step, per particle and per spring for each integrator, the
@@ -57,6 +61,11 @@ internal static class Program
         if (args.Length > 0 && args[0] == "xpbd")
         {
             return XpbdComparison.Run(args[1..]);
+        }
+
+        if (args.Length > 0 && args[0] == "runner")
+        {
+            return RunnerHandOffs.Run(args[1..]);
         }
 
         if (args.Length > 0 && args[0] == "quality")
@@ -197,12 +206,12 @@ internal static class Program
         var seconds = double.Parse(Option(args, "--seconds") ?? "20", CultureInfo.InvariantCulture);
         if (Option(args, "--integrator") is "xpbd")
         {
-            return RunXpbdProfile(n, seconds, Option(args, "--steps"), Option(args, "--runner"));
+            return RunXpbdProfile(n, seconds, Option(args, "--steps"), Option(args, "--runner"), args);
         }
 
         if (Option(args, "--integrator") is "implicit-euler")
         {
-            return RunImplicitProfile(n, seconds, Option(args, "--steps"), Option(args, "--runner"), Option(args, "--tolerance"));
+            return RunImplicitProfile(n, seconds, Option(args, "--steps"), Option(args, "--runner"), Option(args, "--tolerance"), args);
         }
 
         var cloth = new ClothFixture(n);
@@ -232,10 +241,11 @@ internal static class Program
     /// (for perf), or exactly <c>--steps</c> frames (for callgrind: two run lengths, the difference is the frames'
     /// instructions), then the checksum that <c>cloth_xpbd --run</c> prints after as many frames from rest.
     /// </summary>
-    private static int RunXpbdProfile(int n, double seconds, string? steps, string? runnerThreads)
+    private static int RunXpbdProfile(int n, double seconds, string? steps, string? runnerThreads, string[] args)
     {
         var cloth = new XpbdCloth(n);
-        using var runner = runnerThreads is null ? null : new Parallel.WorkerThreadRunner(int.Parse(runnerThreads, CultureInfo.InvariantCulture));
+        var runner = runnerThreads is null ? null : RunnerChoice.Create(args, int.Parse(runnerThreads, CultureInfo.InvariantCulture));
+        using var disposeRunner = runner as IDisposable;
         cloth.Runner = runner;
         var fixedSteps = steps is null ? -1L : long.Parse(steps, CultureInfo.InvariantCulture);
         var clock = Stopwatch.StartNew();
@@ -265,7 +275,7 @@ internal static class Program
     /// <c>--steps</c> frames (for callgrind: two run lengths, the difference is the frames' instructions); prints the
     /// mean CG iterations per frame and a checksum of the state (the sum of its values), the same on any runner.
     /// </summary>
-    private static int RunImplicitProfile(int n, double seconds, string? steps, string? runnerThreads, string? tolerance)
+    private static int RunImplicitProfile(int n, double seconds, string? steps, string? runnerThreads, string? tolerance, string[] args)
     {
         const int framesPerSecond = 60;
         var cloth = new ClothFixture(n);
@@ -273,7 +283,8 @@ internal static class Program
         {
             Tolerance = double.Parse(tolerance ?? "1e-3", CultureInfo.InvariantCulture),
         };
-        using var runner = runnerThreads is null ? null : new Parallel.WorkerThreadRunner(int.Parse(runnerThreads, CultureInfo.InvariantCulture));
+        var runner = runnerThreads is null ? null : RunnerChoice.Create(args, int.Parse(runnerThreads, CultureInfo.InvariantCulture));
+        using var disposeRunner = runner as IDisposable;
         cloth.System.Runner = runner;
         var fixedSteps = steps is null ? -1L : long.Parse(steps, CultureInfo.InvariantCulture);
         var clock = Stopwatch.StartNew();

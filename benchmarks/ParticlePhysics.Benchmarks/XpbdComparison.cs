@@ -12,8 +12,9 @@ namespace ParticlePhysics.Benchmarks;
 /// must give the same state to the last bit after one simulated second; then, after two warm-up seconds each, they
 /// simulate one second from rest in turn, <c>--rounds</c> times, so that both see the same load. Printed: the
 /// fastest round of each (wall time and process CPU time), the ratio of the fastest, and the median of the rounds'
-/// ratios. <c>--cores</c>: the same for the library on one core against <see cref="WorkerThreadRunner"/>(2), with the
-/// two cloths checked bit-identical (wall time only: CPU time adds the cores up).
+/// ratios. <c>--cores</c>: the same for the library on one core against <see cref="WorkerThreadRunner"/>(2) (or the
+/// runner that <see cref="RunnerChoice"/>'s options name), with the two cloths checked bit-identical (wall time only:
+/// CPU time adds the cores up).
 /// </summary>
 internal static class XpbdComparison
 {
@@ -23,13 +24,13 @@ internal static class XpbdComparison
         var rounds = int.Parse(Option(args, "--rounds") ?? "7", CultureInfo.InvariantCulture);
         var cores = args.Contains("--cores");
         Console.WriteLine(cores
-            ? "xpbd, 10 substeps per 1/60 s frame, one simulated second from rest: library on one core vs WorkerThreadRunner(2), alternating"
+            ? $"xpbd, 10 substeps per 1/60 s frame, one simulated second from rest: library on one core vs {RunnerChoice.Describe(args, 2)}, alternating"
             : "xpbd, 10 substeps per 1/60 s frame, one simulated second from rest: C reference (gcc -O3) vs library on one core, alternating");
         Console.WriteLine(string.Create(CultureInfo.InvariantCulture, $"{rounds} rounds; fastest round [ms] (CPU time of the process in brackets); ratio of the fastest; median of the per-round ratios (of CPU times)"));
         var ok = true;
         foreach (var n in sizes)
         {
-            ok &= cores ? CompareCores(n, rounds) : CompareWithC(n, rounds);
+            ok &= cores ? CompareCores(n, rounds, args) : CompareWithC(n, rounds);
         }
 
         return ok ? 0 : 1;
@@ -62,10 +63,11 @@ internal static class XpbdComparison
         return true;
     }
 
-    private static bool CompareCores(int n, int rounds)
+    private static bool CompareCores(int n, int rounds, string[] args)
     {
         var cloth = new XpbdCloth(n);
-        using var runner = new WorkerThreadRunner(2);
+        var runner = RunnerChoice.Create(args, 2);
+        using var disposeRunner = runner as IDisposable;
         cloth.SimulateSecond();
         var one = cloth.Checksum();
         var oneState = cloth.System.State.ToArray();

@@ -48,6 +48,7 @@ namespace ParticlePhysics.RuntimeComparison
                 Snapshots("implicit-euler");
                 Snapshots("rk45");
                 ParallelRunner();
+                RunnerHandOffs();
                 UnitySample();
                 Constraints();
             }
@@ -253,6 +254,68 @@ namespace ParticlePhysics.RuntimeComparison
             var two = StateHash(parallel, parallelRk4);
             Require(one == two, "parallel: WorkerThreadRunner(2) gives other bits than one thread");
             Print("parallel", two);
+        }
+
+        // WorkerThreadRunner's hand-off protocol on this runtime (its memory model, Monitor and Stopwatch): 30 000
+        // runs of pseudo-random sizes (0 to 63 chunks, mostly a few) with every chunk counted after each run, and
+        // 2 000 runs whose chunks wait for each other, so that every worker must wake (a lost wake-up leaves the
+        // chunks waiting, and they give up after 10 s); now and then a pause long enough for the workers to go to
+        // sleep. On 2, 3 and 4 threads, adaptive and never spinning. The hash is of the sizes run: equal on both
+        // runtimes when every check passed.
+        private static void RunnerHandOffs()
+        {
+            var hash = new BitHash();
+            var configurations = new[]
+            {
+                new KeyValuePair<int, TimeSpan>(2, WorkerThreadRunner.DefaultSpinLimit),
+                new KeyValuePair<int, TimeSpan>(3, TimeSpan.Zero),
+                new KeyValuePair<int, TimeSpan>(4, WorkerThreadRunner.DefaultSpinLimit),
+            };
+            foreach (var configuration in configurations)
+            {
+                using (var runner = new WorkerThreadRunner(configuration.Key, configuration.Value))
+                {
+                    var counted = new CountedWork(64);
+                    var seed = 12345u;
+                    long chunks = 0;
+                    for (var run = 0; run < 30000; run++)
+                    {
+                        seed = unchecked((seed * 1664525u) + 1013904223u);
+                        var chunkCount = (int)(seed >> 26);
+                        if ((seed & 0x3000) != 0)
+                        {
+                            chunkCount &= 7;
+                        }
+
+                        counted.Expect(chunkCount);
+                        runner.Run(counted, chunkCount);
+                        var wrong = counted.CheckAndClear(chunkCount);
+                        Require(wrong < 0, "runner-handoffs: run " + run + " of " + chunkCount + " chunks ran chunk " + wrong + " other than once");
+                        chunks += chunkCount;
+                        if (run % 3000 == 0)
+                        {
+                            System.Threading.Thread.Sleep(2);
+                        }
+                    }
+
+                    var meeting = new MeetingWork(configuration.Key);
+                    for (var run = 0; run < 2000; run++)
+                    {
+                        meeting.Reset();
+                        runner.Run(meeting, configuration.Key);
+                        Require(!meeting.GaveUp, "runner-handoffs: a run that needs every worker never had them all: a lost wake-up");
+                        if (run % 500 == 0)
+                        {
+                            System.Threading.Thread.Sleep(2);
+                        }
+                    }
+
+                    hash.Add(configuration.Key);
+                    hash.Add(chunks);
+                }
+            }
+
+            Print("runner-handoffs", hash);
         }
 
         // The Unity sample itself, on the stand-in UnityEngine: 120 frames of the default 21 x 21 cloth, every vertex
@@ -530,6 +593,83 @@ namespace ParticlePhysics.RuntimeComparison
             public long Signals;
             public long VoluntarySwitches;
             public long InvoluntarySwitches;
+        }
+    }
+
+    /// <summary>Counts how often each chunk runs, and whether a chunk was told another chunk count.</summary>
+    internal sealed class CountedWork : IParallelWork
+    {
+        private readonly int[] _calls;
+        private int _expectedCount;
+        private int _wrongCount;
+
+        public CountedWork(int capacity)
+        {
+            _calls = new int[capacity];
+        }
+
+        public void Expect(int chunkCount) => _expectedCount = chunkCount;
+
+        public void Execute(int chunk, int chunkCount)
+        {
+            if (chunkCount != _expectedCount)
+            {
+                System.Threading.Interlocked.Exchange(ref _wrongCount, 1);
+            }
+
+            System.Threading.Interlocked.Increment(ref _calls[chunk]);
+        }
+
+        /// <summary>The first chunk that did not run exactly once (or ran though beyond the count), the count itself if
+        /// a chunk was told another; -1 if all is well. Clears the counts.</summary>
+        public int CheckAndClear(int chunkCount)
+        {
+            var wrong = _wrongCount != 0 ? chunkCount : -1;
+            for (var chunk = 0; chunk < _calls.Length; chunk++)
+            {
+                if (_calls[chunk] != (chunk < chunkCount ? 1 : 0) && wrong < 0)
+                {
+                    wrong = chunk;
+                }
+
+                _calls[chunk] = 0;
+            }
+
+            _wrongCount = 0;
+            return wrong;
+        }
+    }
+
+    /// <summary>Each chunk waits until all the run's chunks have started (10 s at most, then it gives up).</summary>
+    internal sealed class MeetingWork : IParallelWork
+    {
+        private readonly int _parties;
+        private int _arrived;
+
+        public MeetingWork(int parties)
+        {
+            _parties = parties;
+        }
+
+        public bool GaveUp { get; private set; }
+
+        public void Reset() => _arrived = 0;
+
+        public void Execute(int chunk, int chunkCount)
+        {
+            System.Threading.Interlocked.Increment(ref _arrived);
+            var clock = Stopwatch.StartNew();
+            var spinner = default(System.Threading.SpinWait);
+            while (System.Threading.Volatile.Read(ref _arrived) < _parties)
+            {
+                if (clock.ElapsedMilliseconds > 10000)
+                {
+                    GaveUp = true;
+                    return;
+                }
+
+                spinner.SpinOnce();
+            }
         }
     }
 

@@ -1,4 +1,5 @@
 using System;
+using System.Diagnostics;
 using System.Runtime.ExceptionServices;
 using System.Threading;
 
@@ -7,26 +8,98 @@ namespace ParticlePhysics.Parallel;
 /// <summary>
 /// An <see cref="IParallelRunner"/> with its own dedicated background threads (the calling thread works too).
 /// Create one per simulation thread, set it as <see cref="ParticleWorld.Runner"/>, and dispose it when done.
-/// Chunks are claimed with an atomic counter; waking the workers costs a few microseconds per pass, so it pays for
-/// systems of thousands of particles, not for a handful.
+/// Chunks are claimed from a shared counter. Between runs a thread waiting for its partner spins for a few
+/// microseconds while spinning has been paying off (a quiet machine: a hand-off then costs well under a microsecond)
+/// and sleeps otherwise (a busy machine: the cost of waking a thread, a few microseconds, as with plain blocking).
 /// </summary>
+/// <remarks>
+/// <para><b>One run at a time.</b> <see cref="Run"/> and <see cref="Dispose"/> are called by one thread at a time,
+/// the host's simulation thread; a second <see cref="Run"/> while one is in progress (from another thread, or from
+/// inside a chunk) throws <see cref="InvalidOperationException"/>, as does <see cref="Dispose"/> during a run.</para>
+/// <para><b>The protocol.</b> The shared state of a run is its work, its chunk count, <c>_finished</c> (chunks done),
+/// <c>_failure</c> and one 64-bit word <c>_claim</c>: the run's number in the high 32 bits, the next unclaimed
+/// chunk in the low 32.</para>
+/// <list type="number">
+/// <item>The caller first closes the previous run r - 1: <c>Interlocked.Exchange(_claim, (r - 1, Closed))</c>, where
+/// Closed (int.MaxValue) is no chunk's index. It then writes the new work, count, <c>_finished = 0</c> and
+/// <c>_failure = null</c> with plain writes, and opens run r with <c>Interlocked.Exchange(_claim, (r, 0))</c>, a full
+/// fence: a thread that reads run number r from <c>_claim</c> sees those writes.</item>
+/// <item>It then wakes, with <see cref="HandOffWaiter.Wake"/>, as many workers as the run has chunks beyond its own
+/// (a spinning worker needs no wake; see <see cref="HandOffWaiter"/> for why a wake-up cannot be lost).</item>
+/// <item>Every thread, the caller included, claims chunks of run r by compare-exchange of <c>_claim</c> from
+/// (r, i) to (r, i + 1), after reading (r, i) and then a count above i. <c>_claim</c> never takes the same value
+/// twice (the run number grows, and within a run the index only grows until the run is closed), so a thread holding
+/// a stale value fails its compare-exchange: a chunk is claimed once, and only for its own run. A claim that
+/// succeeds means <c>_claim</c> held (r, i) from the thread's read of it to its compare-exchange, so the count read
+/// in between was run r's (the caller rewrites the count only after closing run r, which changes <c>_claim</c>;
+/// without the close, a thread that read (r, count of r) could read the next run's larger count and claim a chunk
+/// past the end of run r). Run r cannot finish before its claimed chunk i does, so the work that the claimer reads
+/// after its claim is run r's too.</item>
+/// <item>After a chunk (whether it returned or threw; an exception is kept in <c>_failure</c> by compare-exchange, the
+/// first one wins) the thread increments <c>_finished</c> (interlocked); the one that brings it to the count wakes
+/// the caller if it waits.</item>
+/// <item>The caller, after claiming chunks until none is left, waits until <c>_finished</c> equals the count, then
+/// rethrows the failure if any. It never waits for a worker that has no chunk: a worker that is descheduled
+/// before it claims anything costs the run nothing, and finds, when it runs again, either the next run or
+/// nothing to claim.</item>
+/// </list>
+/// <para>(The run number wraps after 2^32 runs: a stale value could match again only for a thread stalled between its
+/// read and its compare-exchange for 2^32 runs. A torn read of <c>_claim</c>, on a platform where a 64-bit read is
+/// not atomic, gives a value that fails the compare-exchange or ends the thread's draining early: never a wrong
+/// claim.)</para>
+/// <para>Nothing is allocated per run on any thread: the waiters, their locks and the threads are created here,
+/// and a run only writes fields. Results do not depend on this class: it decides which thread runs a chunk, never
+/// what a chunk computes.</para>
+/// </remarks>
 public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
 {
+    /// <summary>
+    /// The spin limit of <see cref="WorkerThreadRunner(int)"/>: 50 microseconds, about what waking a thread that has
+    /// slept a few tens of microseconds costs on a virtual machine (docs/architecture.md, Parallelism).
+    /// </summary>
+    public static readonly TimeSpan DefaultSpinLimit = TimeSpan.FromTicks(500);
+
+    /// <summary>The longest spin limit accepted: 1 ms, about a scheduler time slice.</summary>
+    public static readonly TimeSpan MaximumSpinLimit = TimeSpan.FromMilliseconds(1);
+
+    // The chunk index of a closed run: no chunk has it (counts are at most int.MaxValue, indices below).
+    private const long Closed = int.MaxValue;
+
     private readonly Thread[] _threads;
-    private readonly SemaphoreSlim _start = new(0);
-    // The last worker to finish releases this. (A SemaphoreSlim creates its lock in its constructor; a
-    // ManualResetEventSlim would allocate one the first time a wait blocks, in the middle of a simulation.)
-    private readonly SemaphoreSlim _finished = new(0);
+    private readonly HandOffWaiter[] _workers;
+    private readonly HandOffWaiter _caller;
+    private long _claim;
     private IParallelWork? _work;
     private int _chunkCount;
-    private int _nextChunk;
-    private int _busyWorkers;
+    private int _finished;
     private ExceptionDispatchInfo? _failure;
-    private volatile bool _disposed;
+    private uint _run;
+    private int _inRun;
+    private int _disposed;
 
-    /// <summary>Creates a runner with <paramref name="parallelism"/> - 1 worker threads (default: one per core).</summary>
+    /// <summary>
+    /// Creates a runner with <paramref name="parallelism"/> - 1 worker threads (default: one per core) and the
+    /// <see cref="DefaultSpinLimit"/>.
+    /// </summary>
     /// <param name="parallelism">The number of chunks run at once, the calling thread included: at least 1.</param>
     public WorkerThreadRunner(int parallelism = 0)
+        : this(parallelism, DefaultSpinLimit)
+    {
+    }
+
+    /// <summary>Creates a runner with <paramref name="parallelism"/> - 1 worker threads and a spin limit.</summary>
+    /// <param name="parallelism">The number of chunks run at once, the calling thread included: at least 1, or 0
+    /// for one per core.</param>
+    /// <param name="spinLimit">The longest a waiting thread spins before it sleeps, when spinning has been paying
+    /// off; <see cref="TimeSpan.Zero"/>: never spin (every hand-off wakes a sleeping thread). At most
+    /// <see cref="MaximumSpinLimit"/>.</param>
+    public WorkerThreadRunner(int parallelism, TimeSpan spinLimit)
+        : this(parallelism, spinLimit, adaptive: true)
+    {
+    }
+
+    /// <summary>The constructor of the public ones; <paramref name="adaptive"/> false spins on every wait (for the tests).</summary>
+    internal WorkerThreadRunner(int parallelism, TimeSpan spinLimit, bool adaptive)
     {
         if (parallelism < 0)
         {
@@ -34,17 +107,76 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
                 nameof(parallelism), parallelism, $"parallelism must be >= 1, or 0 for one per core; got {parallelism}.");
         }
 
+        if (spinLimit < TimeSpan.Zero || spinLimit > MaximumSpinLimit)
+        {
+            throw new ArgumentOutOfRangeException(
+                nameof(spinLimit), spinLimit, $"spinLimit must be between 0 and {MaximumSpinLimit.TotalMilliseconds} ms; got {spinLimit.TotalMilliseconds} ms.");
+        }
+
         MaxParallelism = parallelism == 0 ? Environment.ProcessorCount : parallelism;
+        SpinLimit = spinLimit;
+        var spinTicks = (long)Math.Round(spinLimit.TotalSeconds * Stopwatch.Frequency);
+        _caller = new HandOffWaiter(spinTicks, adaptive);
+        _workers = new HandOffWaiter[MaxParallelism - 1];
         _threads = new Thread[MaxParallelism - 1];
         for (var t = 0; t < _threads.Length; t++)
         {
+            _workers[t] = new HandOffWaiter(spinTicks, adaptive);
             _threads[t] = new Thread(WorkerLoop) { IsBackground = true, Name = $"ParticlePhysics worker {t + 1}" };
-            _threads[t].Start();
+            _threads[t].Start(_workers[t]);
         }
     }
 
     /// <inheritdoc />
     public int MaxParallelism { get; }
+
+    /// <summary>The longest a waiting thread spins before it sleeps (zero: it never spins).</summary>
+    public TimeSpan SpinLimit { get; }
+
+    /// <summary>How many times the waiting threads slept and were signalled (for the tests and benchmarks).</summary>
+    internal long Sleeps
+    {
+        get
+        {
+            var sleeps = _caller.Signals;
+            foreach (var worker in _workers)
+            {
+                sleeps += worker.Signals;
+            }
+
+            return sleeps;
+        }
+    }
+
+    /// <summary>Signals sent twice to a waiter: 0 unless the hand-off protocol is broken (for the tests).</summary>
+    internal long DoubleSignals
+    {
+        get
+        {
+            var doubles = _caller.DoubleSignals;
+            foreach (var worker in _workers)
+            {
+                doubles += worker.DoubleSignals;
+            }
+
+            return doubles;
+        }
+    }
+
+    /// <summary>How many waits spun first (for the tests and benchmarks).</summary>
+    internal long SpinningWaits
+    {
+        get
+        {
+            var spins = _caller.Spins;
+            foreach (var worker in _workers)
+            {
+                spins += worker.Spins;
+            }
+
+            return spins;
+        }
+    }
 
     /// <inheritdoc />
     public void Run(IParallelWork work, int chunkCount)
@@ -55,7 +187,7 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
             throw new ArgumentNullException(nameof(work));
         }
 
-        if (_disposed)
+        if (Volatile.Read(ref _disposed) != 0)
         {
             throw new ObjectDisposedException(nameof(WorkerThreadRunner));
         }
@@ -65,82 +197,193 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
             return;
         }
 
-        if (_threads.Length == 0 || chunkCount == 1)
+        if (Interlocked.Exchange(ref _inRun, 1) != 0)
         {
-            for (var chunk = 0; chunk < chunkCount; chunk++)
-            {
-                work.Execute(chunk, chunkCount);
-            }
-
-            return;
+            throw new InvalidOperationException(
+                "WorkerThreadRunner.Run was called while a run was in progress (from another thread, or from inside a chunk); it runs one at a time.");
         }
 
-        _work = work;
-        _chunkCount = chunkCount;
-        _nextChunk = 0;
-        _failure = null;
-        _busyWorkers = _threads.Length;
-        _start.Release(_threads.Length);
-        Drain(work, chunkCount);
-        _finished.Wait();
-        _work = null;
-        _failure?.Throw();
+        try
+        {
+            if (_threads.Length == 0 || chunkCount == 1)
+            {
+                RunHere(work, chunkCount);
+            }
+            else
+            {
+                RunOnThreads(work, chunkCount);
+            }
+        }
+        finally
+        {
+            Volatile.Write(ref _inRun, 0);
+        }
     }
 
-    /// <summary>Stops the worker threads.</summary>
+    /// <summary>Stops the worker threads and waits for them. Not during a run; a second call does nothing.</summary>
     public void Dispose()
     {
-        if (_disposed)
+        if (Volatile.Read(ref _inRun) != 0)
+        {
+            throw new InvalidOperationException("WorkerThreadRunner.Dispose was called during a run.");
+        }
+
+        // The interlocked exchange is the fence Wake relies on: a worker either sees the flag or is signalled.
+        if (Interlocked.Exchange(ref _disposed, 1) != 0)
         {
             return;
         }
 
-        _disposed = true;
-        if (_threads.Length > 0)
+        foreach (var worker in _workers)
         {
-            _start.Release(_threads.Length); // (a runner of parallelism 1 has no worker to wake: Release(0) throws)
+            worker.Wake();
         }
 
         foreach (var thread in _threads)
         {
             thread.Join();
         }
-
-        _start.Dispose();
-        _finished.Dispose();
     }
 
-    private void WorkerLoop()
+    /// <summary>The chunks in order on the calling thread; a failure is rethrown after the others, as on threads.</summary>
+    private static void RunHere(IParallelWork work, int chunkCount)
     {
-        while (true)
-        {
-            _start.Wait();
-            if (_disposed)
-            {
-                return;
-            }
-
-            Drain(_work!, _chunkCount);
-            if (Interlocked.Decrement(ref _busyWorkers) == 0)
-            {
-                _finished.Release();
-            }
-        }
-    }
-
-    private void Drain(IParallelWork work, int chunkCount)
-    {
-        int chunk;
-        while ((chunk = Interlocked.Increment(ref _nextChunk) - 1) < chunkCount)
+        ExceptionDispatchInfo? failure = null;
+        for (var chunk = 0; chunk < chunkCount; chunk++)
         {
             try
             {
                 work.Execute(chunk, chunkCount);
             }
+            catch (Exception ex) when (failure is null)
+            {
+                failure = ExceptionDispatchInfo.Capture(ex);
+            }
+            catch (Exception)
+            {
+                // A later failure: the first one is rethrown.
+            }
+        }
+
+        failure?.Throw();
+    }
+
+    private void RunOnThreads(IParallelWork work, int chunkCount)
+    {
+        // Close the previous run before touching its fields: from here on no claim of it can succeed (see Drain).
+        // It keeps its number, so that no worker takes the closed run for a new one.
+        Interlocked.Exchange(ref _claim, ((long)_run << 32) | Closed);
+        var run = unchecked(++_run);
+        _work = work;
+        _chunkCount = chunkCount;
+        _finished = 0;
+        _failure = null;
+        Interlocked.Exchange(ref _claim, (long)run << 32); // open it (a full fence: claimers see the fields)
+
+        // Wake only the workers that can get a chunk; the others sleep on, or join if they are spinning anyway.
+        var wake = Math.Min(_workers.Length, chunkCount - 1);
+        for (var t = 0; t < wake; t++)
+        {
+            _workers[t].Wake();
+        }
+
+        Drain(run);
+        _caller.Wait(new RunFinished(this, chunkCount));
+
+        // Every chunk has been claimed and finished: no thread can read the work any more (a claim would fail).
+        _work = null;
+        var failure = _failure;
+        _failure = null;
+        failure?.Throw();
+    }
+
+    private void WorkerLoop(object? state)
+    {
+        var waiter = (HandOffWaiter)state!;
+        uint seen = 0;
+        while (true)
+        {
+            waiter.Wait(new NextRun(this, seen));
+            if (Volatile.Read(ref _disposed) != 0)
+            {
+                return;
+            }
+
+            seen = RunNumber(Volatile.Read(ref _claim));
+            Drain(seen);
+        }
+    }
+
+    /// <summary>Claims and executes chunks of run <paramref name="run"/> until none is left (or a later run began).</summary>
+    private void Drain(uint run)
+    {
+        // Bounded: each pass claims a chunk, or finds the run over, or fails a compare-exchange because another
+        // thread claimed a chunk meanwhile, which happens at most chunkCount times per run.
+        while (true)
+        {
+            var claim = Volatile.Read(ref _claim);
+            var chunk = (int)(uint)claim;
+            var chunkCount = Volatile.Read(ref _chunkCount);
+            if (RunNumber(claim) != run || chunk >= chunkCount)
+            {
+                return;
+            }
+
+            if (Interlocked.CompareExchange(ref _claim, claim + 1, claim) != claim)
+            {
+                continue;
+            }
+
+            // Claimed: _claim held (run, chunk) from the read above to here, so the count read in between is this
+            // run's (the caller rewrites it only after closing the run, which changes _claim), and the run cannot
+            // finish before this chunk does, so the work read below is this run's too.
+            try
+            {
+                _work!.Execute(chunk, chunkCount);
+            }
             catch (Exception ex)
             {
                 Interlocked.CompareExchange(ref _failure, ExceptionDispatchInfo.Capture(ex), null);
             }
+
+            if (Interlocked.Increment(ref _finished) == chunkCount)
+            {
+                _caller.Wake(); // (a no-op when the caller itself finished the run: it is not asleep)
+                return;
+            }
         }
+    }
+
+    private static uint RunNumber(long claim) => (uint)(claim >>> 32);
+
+    /// <summary>A worker's wait: a run other than the last one it saw has been published, or the runner is disposed.</summary>
+    private readonly struct NextRun : HandOffWaiter.ICondition
+    {
+        private readonly WorkerThreadRunner _runner;
+        private readonly uint _seen;
+
+        public NextRun(WorkerThreadRunner runner, uint seen)
+        {
+            _runner = runner;
+            _seen = seen;
+        }
+
+        public bool IsMet() =>
+            RunNumber(Volatile.Read(ref _runner._claim)) != _seen || Volatile.Read(ref _runner._disposed) != 0;
+    }
+
+    /// <summary>The caller's wait: every chunk of the run has finished.</summary>
+    private readonly struct RunFinished : HandOffWaiter.ICondition
+    {
+        private readonly WorkerThreadRunner _runner;
+        private readonly int _chunkCount;
+
+        public RunFinished(WorkerThreadRunner runner, int chunkCount)
+        {
+            _runner = runner;
+            _chunkCount = chunkCount;
+        }
+
+        public bool IsMet() => Volatile.Read(ref _runner._finished) == _chunkCount;
     }
 }

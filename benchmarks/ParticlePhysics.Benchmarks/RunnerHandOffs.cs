@@ -1,0 +1,326 @@
+using System;
+using System.Collections.Generic;
+using System.Diagnostics;
+using System.Globalization;
+using System.IO;
+using System.Linq;
+using System.Threading;
+using ParticlePhysics.Parallel;
+
+namespace ParticlePhysics.Benchmarks;
+
+/// <summary>
+/// The runner mode (issue 13): the cost of a hand-off alone, without the engine. The calling thread does a little
+/// serial work, then a run of chunks of calibrated busy work, over and over, as the engine's passes do (xpbd: a
+/// colour of a few microseconds per core, back to back; implicit Euler: passes of tens of microseconds between
+/// serial pieces). The same loop on one core (the chunks in turn on the calling thread, no runner), with
+/// <see cref="PreviousWorkerThreadRunner"/>, with <see cref="WorkerThreadRunner"/> that never spins (spin limit 0)
+/// and with <see cref="WorkerThreadRunner"/> as shipped, in alternating rounds so that all see the same load.
+/// Printed per case: wall time per run (fastest round, median of rounds), the process's CPU time per run, and the
+/// medians of the per-round ratios against one core and against the previous runner.
+/// <c>--engine xpbd|implicit-euler [--n 64]</c>: the same four on the engine instead, one simulated second from rest
+/// per round (xpbd: 60 frames of 10 substeps; implicit Euler: 60 frames at tolerance 1e-3 from a cold solver), each
+/// runner's state checked bit-identical to one core's. <c>--spin-us N</c>: the adaptive runner with a spin limit of N
+/// microseconds instead of the default.
+/// </summary>
+internal static class RunnerHandOffs
+{
+    /// <summary>The spin limit of the adaptive runner: the library's default, or <c>--spin-us N</c>.</summary>
+    private static TimeSpan _spinLimit = WorkerThreadRunner.DefaultSpinLimit;
+
+    public static int Run(string[] args)
+    {
+        var parallelism = int.Parse(Option(args, "--parallelism") ?? "2", CultureInfo.InvariantCulture);
+        var rounds = int.Parse(Option(args, "--rounds") ?? "5", CultureInfo.InvariantCulture);
+        if (Option(args, "--spin-us") is { } spin)
+        {
+            _spinLimit = TimeSpan.FromTicks((long)Math.Round(double.Parse(spin, CultureInfo.InvariantCulture) * 10));
+        }
+
+        if (Option(args, "--engine") is { } engine)
+        {
+            return RunEngine(engine, int.Parse(Option(args, "--n") ?? "64", CultureInfo.InvariantCulture), parallelism, rounds);
+        }
+
+        var milliseconds = double.Parse(Option(args, "--ms") ?? "150", CultureInfo.InvariantCulture);
+        var perMicrosecond = Calibrate();
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"runner hand-offs: {parallelism} threads, {rounds} rounds of about {milliseconds} ms per runner and case, alternating; load average {LoadAverage()}, {Environment.ProcessorCount} cores"));
+        Console.WriteLine(string.Create(CultureInfo.InvariantCulture, $"busy work calibrated at {perMicrosecond:F1} iterations per us (fastest of 5)"));
+        Console.WriteLine("per run: serial work on the calling thread, then the chunks; us per run: fastest round (median); CPU: the process's CPU time per run (median);");
+        Console.WriteLine("x one core, x previous: medians of the per-round ratios of wall time (above 1: faster)");
+
+        // A chunk time of -1: the rendezvous, one chunk per thread, each waiting until all have started, so that every
+        // thread must take part: the pure cost of handing a run to the workers and back (no one-core figure).
+        var cases = new (double ChunkMicroseconds, int Chunks, double SerialMicroseconds)[]
+        {
+            (-1, parallelism, 0),
+            (0, parallelism, 0),
+            (2.5, 2 * parallelism, 1),
+            (5, 2 * parallelism, 5),
+            (10, 2 * parallelism, 10),
+            (25, 2 * parallelism, 20),
+            (50, parallelism, 20),
+        };
+        foreach (var (chunkMicroseconds, chunks, serialMicroseconds) in cases)
+        {
+            RunCase(parallelism, rounds, milliseconds, perMicrosecond, chunkMicroseconds, chunks, serialMicroseconds);
+        }
+
+        return 0;
+    }
+
+    private static void RunCase(int parallelism, int rounds, double milliseconds, double perMicrosecond, double chunkMicroseconds, int chunks, double serialMicroseconds)
+    {
+        var rendezvous = chunkMicroseconds < 0;
+        var work = new BusyWork(rendezvous ? 0 : (long)Math.Round(chunkMicroseconds * perMicrosecond), rendezvous);
+        var serial = (long)Math.Round(serialMicroseconds * perMicrosecond);
+        using var previous = new PreviousWorkerThreadRunner(parallelism);
+        using var blocking = new WorkerThreadRunner(parallelism, TimeSpan.Zero);
+        using var adaptive = new WorkerThreadRunner(parallelism, _spinLimit);
+        var runners = new (string Name, IParallelRunner? Runner)[]
+        {
+            ("one core", null),
+            ("previous runner", previous),
+            ("spin limit 0", blocking),
+            (string.Create(CultureInfo.InvariantCulture, $"adaptive, {adaptive.SpinLimit.TotalMilliseconds * 1000} us"), adaptive),
+        };
+        var oneCoreMicroseconds = serialMicroseconds + (chunks * Math.Max(0, chunkMicroseconds));
+        var runs = (int)Math.Max(200, milliseconds * 1000 / Math.Max(2, oneCoreMicroseconds));
+        var wall = runners.Select(_ => new double[rounds]).ToArray();
+        var cpu = runners.Select(_ => new double[rounds]).ToArray();
+        for (var k = 0; k < runners.Length; k++)
+        {
+            Measure(runners[k].Runner, work, chunks, serial, Math.Max(1, runs / 10)); // warm-up
+        }
+
+        for (var r = 0; r < rounds; r++)
+        {
+            for (var k = 0; k < runners.Length; k++)
+            {
+                (wall[k][r], cpu[k][r]) = Measure(runners[k].Runner, work, chunks, serial, runs);
+            }
+        }
+
+        Console.WriteLine(rendezvous
+            ? $"{chunks} chunks that wait for each other (every thread takes one), {runs} runs per round:"
+            : string.Create(
+                CultureInfo.InvariantCulture,
+                $"{chunks} chunks of {chunkMicroseconds} us after {serialMicroseconds} us of serial work ({oneCoreMicroseconds} us on one core), {runs} runs per round:"));
+        for (var k = 0; k < runners.Length; k++)
+        {
+            Console.WriteLine(string.Create(
+                CultureInfo.InvariantCulture,
+                $"  {runners[k].Name,-22} {wall[k].Min(),8:F2} ({Median(wall[k]),8:F2}) us per run, CPU {Median(cpu[k]),8:F2} us; x one core {MedianRatio(wall[0], wall[k]),6:F3}, x previous {MedianRatio(wall[1], wall[k]),6:F3}"));
+        }
+    }
+
+    private static int RunEngine(string engine, int n, int parallelism, int rounds)
+    {
+        Action<IParallelRunner?> simulateSecond;
+        Func<double[]> state;
+        if (engine == "xpbd")
+        {
+            var cloth = new XpbdCloth(n);
+            simulateSecond = runner =>
+            {
+                cloth.Runner = runner;
+                cloth.SimulateSecond();
+            };
+            state = () => cloth.System.State.ToArray();
+        }
+        else if (engine == "implicit-euler")
+        {
+            var cloth = new ClothFixture(n);
+            var implicitEuler = new Integrators.ImplicitEuler { Tolerance = 1e-3 };
+            simulateSecond = runner =>
+            {
+                cloth.System.Runner = runner;
+                cloth.Reset();
+                implicitEuler.ReadState(new double[] { 0 }); // a cold solver, as the profile mode and the benchmark
+                for (var frame = 0; frame < 60; frame++)
+                {
+                    cloth.System.Step(implicitEuler, 1.0 / 60);
+                }
+            };
+            state = () => cloth.System.State.ToArray();
+        }
+        else
+        {
+            Console.Error.WriteLine($"error: --engine {engine}: expected xpbd or implicit-euler");
+            return 1;
+        }
+
+        using var previous = new PreviousWorkerThreadRunner(parallelism);
+        using var blocking = new WorkerThreadRunner(parallelism, TimeSpan.Zero);
+        using var adaptive = new WorkerThreadRunner(parallelism, _spinLimit);
+        var runners = new (string Name, IParallelRunner? Runner)[]
+        {
+            ("one core", null),
+            ("previous runner", previous),
+            ("spin limit 0", blocking),
+            (string.Create(CultureInfo.InvariantCulture, $"adaptive, {adaptive.SpinLimit.TotalMilliseconds * 1000} us"), adaptive),
+        };
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"{engine}, {n} x {n} cloth, one simulated second from rest per round: one core and {parallelism} threads, {rounds} rounds alternating; load average {LoadAverage()}, {Environment.ProcessorCount} cores"));
+        simulateSecond(null);
+        var expected = state();
+        var same = true;
+        foreach (var (_, runner) in runners)
+        {
+            simulateSecond(runner); // warm-up, and the bits
+            same &= state().AsSpan().SequenceEqual(expected);
+        }
+
+        var wall = runners.Select(_ => new double[rounds]).ToArray();
+        var cpu = runners.Select(_ => new double[rounds]).ToArray();
+        for (var r = 0; r < rounds; r++)
+        {
+            for (var k = 0; k < runners.Length; k++)
+            {
+                (wall[k][r], cpu[k][r]) = Measure(() => simulateSecond(runners[k].Runner));
+            }
+        }
+
+        Console.WriteLine(same ? "same bits with every runner as on one core" : "error: a runner gave DIFFERENT bits from one core");
+        Console.WriteLine("ms per simulated second: fastest round (median); CPU: the process's CPU time (median); x one core, x previous: medians of the per-round ratios of wall time");
+        for (var k = 0; k < runners.Length; k++)
+        {
+            Console.WriteLine(string.Create(
+                CultureInfo.InvariantCulture,
+                $"  {runners[k].Name,-22} {wall[k].Min(),9:F2} ({Median(wall[k]),9:F2}) ms, CPU {Median(cpu[k]),9:F2} ms; x one core {MedianRatio(wall[0], wall[k]),6:F3}, x previous {MedianRatio(wall[1], wall[k]),6:F3}"));
+        }
+
+        return same ? 0 : 1;
+    }
+
+    /// <summary>Wall and process CPU time [ms] of <paramref name="action"/>.</summary>
+    private static (double Wall, double Cpu) Measure(Action action)
+    {
+        using var process = Process.GetCurrentProcess();
+        var cpu = process.TotalProcessorTime;
+        var clock = Stopwatch.StartNew();
+        action();
+        var wall = clock.Elapsed.TotalMilliseconds;
+        process.Refresh();
+        return (wall, (process.TotalProcessorTime - cpu).TotalMilliseconds);
+    }
+
+    /// <summary>Wall and process CPU time per run [us] of <paramref name="runs"/> runs.</summary>
+    private static (double Wall, double Cpu) Measure(IParallelRunner? runner, BusyWork work, int chunks, long serial, int runs)
+    {
+        if (runner is null && work.Rendezvous)
+        {
+            return (double.NaN, double.NaN); // one thread cannot meet itself
+        }
+
+        using var process = Process.GetCurrentProcess();
+        var cpu = process.TotalProcessorTime;
+        var clock = Stopwatch.StartNew();
+        for (var i = 0; i < runs; i++)
+        {
+            BusyWork.Sink = BusyWork.Burn(serial, i);
+            if (runner is null)
+            {
+                for (var c = 0; c < chunks; c++)
+                {
+                    work.Execute(c, chunks);
+                }
+            }
+            else
+            {
+                runner.Run(work, chunks);
+            }
+        }
+
+        var wall = clock.Elapsed.TotalMilliseconds * 1000 / runs;
+        process.Refresh();
+        return (wall, (process.TotalProcessorTime - cpu).TotalMilliseconds * 1000 / runs);
+    }
+
+    /// <summary>Iterations of <see cref="BusyWork.Burn"/> per microsecond: the fastest of 5 tries of about 5 ms.</summary>
+    private static double Calibrate()
+    {
+        const long iterations = 2_000_000;
+        var best = 0.0;
+        BusyWork.Burn(iterations / 10, 1);
+        for (var t = 0; t < 5; t++)
+        {
+            var clock = Stopwatch.StartNew();
+            BusyWork.Burn(iterations, t);
+            best = Math.Max(best, iterations / (clock.Elapsed.TotalMilliseconds * 1000));
+        }
+
+        return best;
+    }
+
+    private static string LoadAverage() =>
+        File.Exists("/proc/loadavg") ? string.Join(' ', File.ReadAllText("/proc/loadavg").Split(' ').Take(3)) : "unknown";
+
+    private static double Median(IReadOnlyList<double> values)
+    {
+        var sorted = values.OrderBy(x => x).ToArray();
+        return sorted.Length % 2 == 1 ? sorted[sorted.Length / 2] : 0.5 * (sorted[(sorted.Length / 2) - 1] + sorted[sorted.Length / 2]);
+    }
+
+    /// <summary>The median over the rounds of numerator[r] / denominator[r].</summary>
+    private static double MedianRatio(double[] numerator, double[] denominator) =>
+        Median(numerator.Select((x, r) => x / denominator[r]).ToArray());
+
+    private static string? Option(string[] args, string name)
+    {
+        var i = Array.IndexOf(args, name);
+        return i >= 0 && i + 1 < args.Length ? args[i + 1] : null;
+    }
+
+    /// <summary>Chunks of a dependent chain of multiply-adds: a fixed time per chunk, no memory traffic.</summary>
+    private sealed class BusyWork : IParallelWork
+    {
+        private readonly long _iterations;
+        private readonly double[] _sink = new double[64 * 8];
+        private long _arrived;
+
+        /// <summary>Where the serial work's result goes, so that the compiler keeps the loop.</summary>
+        public static double Sink { get; set; }
+
+        public BusyWork(long iterations, bool rendezvous)
+        {
+            _iterations = iterations;
+            Rendezvous = rendezvous;
+        }
+
+        /// <summary>Each chunk waits until every chunk of its run has started (instead of burning).</summary>
+        public bool Rendezvous { get; }
+
+        public static double Burn(long iterations, double seed)
+        {
+            var x = seed;
+            for (var i = 0L; i < iterations; i++)
+            {
+                x = (x * 0.999999) + 1e-6;
+            }
+
+            return x;
+        }
+
+        public void Execute(int chunk, int chunkCount)
+        {
+            if (!Rendezvous)
+            {
+                _sink[(chunk & 63) * 8] = Burn(_iterations, chunk);
+                return;
+            }
+
+            // The k-th arrival overall belongs to run (k - 1) / chunkCount: wait for that run's last arrival.
+            var ticket = Interlocked.Increment(ref _arrived);
+            var goal = (((ticket - 1) / chunkCount) + 1) * chunkCount;
+            var spinner = default(SpinWait);
+            while (Volatile.Read(ref _arrived) < goal)
+            {
+                spinner.SpinOnce(sleep1Threshold: -1);
+            }
+        }
+    }
+}
