@@ -25,9 +25,13 @@ namespace ParticlePhysics.Integrators;
 /// <para>
 /// Cost: one pass over the particles for the prediction (it also saves x0 and v0), one projection pass, one pass for
 /// the velocities, per substep; nothing is allocated once the buffers are sized. With a
-/// <see cref="ParticleWorld.Runner"/> the two particle passes are split into ranges of particles and the springs'
-/// projection into ranges of one colour at a time (<see cref="Constraints.SpringProjection"/>): every value is then
-/// computed by the same operations as on one core, so the result is bit-identical.
+/// <see cref="ParticleWorld.Runner"/> the two particle passes are split into ranges of particles, one hand-off each,
+/// and the springs' projection into two phases of groups of springs that share no particle
+/// (<see cref="Constraints.SpringProjection"/>), one hand-off each: four per substep on a cloth. Every value is then
+/// computed by the same operations as on one core, so the result is bit-identical. Nothing else can be folded into
+/// those hand-offs without the integrator seeing forces or constraints: between the velocity pass and the next
+/// prediction the world computes the unprojected accelerations (forces of the new velocities) and solves the
+/// constraints' velocities, and the projection between the two passes belongs to the constraint sets.
 /// </para>
 /// </remarks>
 public sealed class Xpbd : IPositionBasedIntegrator
