@@ -207,7 +207,11 @@ public sealed class SpringProjection : IForceProjection
         for (var b = _groupBatchStarts[begin]; b < _groupBatchStarts[end]; b++)
         {
             ProjectPairs(pairs, _pairStarts[b], _pairStarts[b + 1], x, x0, w);
-            ProjectAnchored(anchored, _anchoredStarts[b], _anchoredStarts[b + 1], x, x0, w);
+            int anchoredBegin = _anchoredStarts[b], anchoredEnd = _anchoredStarts[b + 1];
+            if (anchoredBegin < anchoredEnd)
+            {
+                ProjectAnchored(anchored, anchoredBegin, anchoredEnd, x, x0, w); // (a call saved per batch on a plain cloth)
+            }
         }
     }
 
