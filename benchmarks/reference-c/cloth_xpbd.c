@@ -50,7 +50,7 @@ typedef struct {
     int *first, *second;   /* in the builder's order */
     double *params;        /* k, L, c per spring, builder's order */
     int *order;            /* projection order: spring indices */
-    Spring *projected;     /* in colour order, for the current h */
+    Spring *projected;     /* in projection order, for the current h */
     double h_prepared;
     double *mass, *inverse_mass;
     double *initial, *x, *v, *x0;
@@ -218,7 +218,8 @@ static void reset(Cloth *c)
     memcpy(c->v, c->initial + m, m * sizeof(double));
 }
 
-/* The springs in projection order with k h^2 and c h for this substep (the same products the library forms per spring). */
+/* The springs in projection order with k h^2 and c h for this substep (the same products the library forms per
+ * spring). */
 static void prepare(Cloth *c, double h)
 {
     for (int s = 0; s < c->springs; s++) {
@@ -376,7 +377,7 @@ int main(int argc, char **argv)
         build(&c, parse_n(argv[3]));
         reset(&c);
         for (long s = 0; s < steps; s++) xpbd_step_cloth(&c, 1.0 / STEPS_PER_SECOND, substeps);
-        printf("n = %d: %ld steps, checksum %.17g\n", c.n, steps, checksum(&c));
+        printf("n = %d (P = %d): %ld steps, checksum %.17g\n", c.n, c.parts, steps, checksum(&c));
         return 0;
     }
     if (argc >= 3 && strcmp(argv[1], "--substeps") == 0) {
