@@ -8,15 +8,19 @@
  * gravity 9.81. Same algorithm as Xpbd.cs with SpringProjection.cs, one pass per substep: each step of dt is split
  * into S substeps of h = dt / S; each substep, from (x0, v0):
  *   a = (-lambda v0 + m g) / m (0 for a pinned particle); v = v0 + h a; x = x0 + h v     (the prediction)
- *   every spring once, in colour order (greedy colouring in spring order, as ConstraintColouring.cs):
+ *   every spring once, in the library's order (ConstraintColouring.cs, ConstraintPartition.cs): the springs
+ *   coloured greedily in spring order and sorted by colour; the particles split into P parts of contiguous indices
+ *   (strips of rows); first the even parts, each with its springs (both ends in it, or one in it and one in an odd
+ *   part) in colour order, then the odd parts, each with its springs in colour order:
  *     C = l - L, u = (x_i - x_j) / l, w = w_i + w_j,
  *     dlambda = -(k h^2 C + c h u . ((x_i - x0_i) - (x_j - x0_j))) / ((k h^2 + c h) w + 1),
  *     x_i += w_i dlambda u, x_j -= w_j dlambda u  (skipped when w = 0 or l = 0)
  *   v = (x - x0) / h for every particle that is not pinned.
  * The expressions are the library's, operand for operand, and gcc in ISO C mode does not contract a * b + c into a
  * fused multiply-add, so the states agree bit for bit (the checksum below is the one the C# verify mode prints).
- * Written as C is written: the prediction in one pass per particle, the springs as one array of structs in colour
- * order (ends, k h^2, c h, L), which is what a C programmer does with the substep fixed.
+ * Written as C is written: the prediction in one pass per particle, the springs as one array of structs in projection
+ * order (ends, k h^2, c h, L), which is what a C programmer does with the substep fixed. One core: the order is what
+ * lets the library split a pass over two or more cores in two hand-offs and still compute these bits.
  *
  * Timing: one simulated second (60 steps of 1/60 s, 10 substeps each) from rest per repetition, so a long run
  * measures a falling, swinging cloth as a game sees it. Seven timed batches of about 0.2 s: the median and the best.
@@ -42,11 +46,11 @@ typedef struct {
 } Spring;
 
 typedef struct {
-    int n, particles, springs, colours;
+    int n, particles, springs, colours, parts;
     int *first, *second;   /* in the builder's order */
     double *params;        /* k, L, c per spring, builder's order */
-    int *order;            /* colour order: spring indices */
-    Spring *projected;     /* in colour order, for the current h */
+    int *order;            /* projection order: spring indices */
+    Spring *projected;     /* in projection order, for the current h */
     double h_prepared;
     double *mass, *inverse_mass;
     double *initial, *x, *v, *x0;
@@ -110,6 +114,48 @@ static void colour(Cloth *c)
     free(start); free(fill); free(at); free(colour_of); free(taken); free(starts); free(next);
 }
 
+/* The part counts tried, largest first, and what a partition must meet: ConstraintPartition.cs. */
+static const int part_candidates[] = { 24, 12, 8, 4 };
+enum { MIN_PARTICLES_PER_PART = 256, MAX_SEAM_SHARE_DIVISOR = 4 };
+
+/* Reorders c->order (the colour order) into one group per part, the even parts (each with its seams, the springs from
+ * it to an odd part) then the odd ones, each group in colour order (a stable distribution). Returns 0, leaving
+ * c->order as it was, if a spring joins two parts of the same parity, if the seams are more than a quarter of the
+ * springs, or if the seams of two even parts reach one particle. */
+static int partition(Cloth *c, int parts)
+{
+    const int count = c->springs, particles = c->particles, half = parts / 2;
+    int *part_of = checked_calloc(particles, sizeof(int)), *reached_by = checked_calloc(particles, sizeof(int));
+    int *group_of = checked_calloc(count, sizeof(int)), *starts = checked_calloc(parts + 1, sizeof(int));
+    int *by_colour = checked_calloc(count, sizeof(int));
+    int seams = 0, accepted = 1;
+    for (int p = 0; p < parts; p++) {
+        int begin = (int)((long long)particles * p / parts), end = (int)((long long)particles * (p + 1) / parts);
+        for (int i = begin; i < end; i++) part_of[i] = p;
+    }
+    for (int i = 0; i < particles; i++) reached_by[i] = -1;
+    for (int s = 0; s < count && accepted; s++) {
+        int a = part_of[c->first[s]], b = part_of[c->second[s]], part = a;
+        if (a != b) {
+            int even = a % 2 == 0 ? a : b, odd_end = a % 2 == 0 ? c->second[s] : c->first[s];
+            if ((a - b) % 2 == 0 || (reached_by[odd_end] >= 0 && reached_by[odd_end] != even)) accepted = 0;
+            reached_by[odd_end] = even;
+            part = even;
+            seams++;
+        }
+        group_of[s] = part % 2 == 0 ? part / 2 : half + part / 2; /* the even parts first, then the odd ones */
+    }
+    if (accepted && (long long)seams * MAX_SEAM_SHARE_DIVISOR > count) accepted = 0;
+    if (accepted) {
+        for (int s = 0; s < count; s++) starts[group_of[s] + 1]++;
+        for (int g = 0; g < parts; g++) starts[g + 1] += starts[g];
+        memcpy(by_colour, c->order, count * sizeof(int));
+        for (int k = 0; k < count; k++) c->order[starts[group_of[by_colour[k]]]++] = by_colour[k];
+    }
+    free(part_of); free(reached_by); free(group_of); free(starts); free(by_colour);
+    return accepted;
+}
+
 static void build(Cloth *c, int n)
 {
     const double r = 1.0 / (n - 1), k = 50, damping = 0.05, diagonal = r * sqrt(2.0);
@@ -154,6 +200,14 @@ static void build(Cloth *c, int n)
         }
     }
     colour(c);
+    c->parts = 1;
+    for (size_t k = 0; k < sizeof part_candidates / sizeof part_candidates[0]; k++) {
+        int parts = part_candidates[k];
+        if (c->particles / parts >= MIN_PARTICLES_PER_PART && partition(c, parts)) {
+            c->parts = parts;
+            break;
+        }
+    }
     c->h_prepared = -1;
 }
 
@@ -164,7 +218,8 @@ static void reset(Cloth *c)
     memcpy(c->v, c->initial + m, m * sizeof(double));
 }
 
-/* The springs in colour order with k h^2 and c h for this substep (the same products the library forms per spring). */
+/* The springs in projection order with k h^2 and c h for this substep (the same products the library forms per
+ * spring). */
 static void prepare(Cloth *c, double h)
 {
     for (int s = 0; s < c->springs; s++) {
@@ -322,7 +377,7 @@ int main(int argc, char **argv)
         build(&c, parse_n(argv[3]));
         reset(&c);
         for (long s = 0; s < steps; s++) xpbd_step_cloth(&c, 1.0 / STEPS_PER_SECOND, substeps);
-        printf("n = %d: %ld steps, checksum %.17g\n", c.n, steps, checksum(&c));
+        printf("n = %d (P = %d): %ld steps, checksum %.17g\n", c.n, c.parts, steps, checksum(&c));
         return 0;
     }
     if (argc >= 3 && strcmp(argv[1], "--substeps") == 0) {

@@ -254,6 +254,25 @@ namespace ParticlePhysics.RuntimeComparison
             var two = StateHash(parallel, parallelRk4);
             Require(one == two, "parallel: WorkerThreadRunner(2) gives other bits than one thread");
             Print("parallel", two);
+
+            // xpbd on the 32 x 32 cloth (1024 particles: its springs projected in 4 strips of rows, two phases), one
+            // thread and two, one second at 60 Hz.
+            var xpbdSingle = Cloth(32);
+            var xpbd = new Xpbd();
+            Run(xpbdSingle, xpbd, 1.0 / 60, 60);
+            var xpbdParallel = Cloth(32);
+            var parallelXpbd = new Xpbd();
+            using (var runner = new WorkerThreadRunner(2))
+            {
+                xpbdParallel.Runner = runner;
+                Run(xpbdParallel, parallelXpbd, 1.0 / 60, 60);
+                xpbdParallel.Runner = null;
+            }
+
+            var xpbdOne = StateHash(xpbdSingle, xpbd);
+            var xpbdTwo = StateHash(xpbdParallel, parallelXpbd);
+            Require(xpbdOne == xpbdTwo, "parallel/xpbd: WorkerThreadRunner(2) gives other bits than one thread");
+            Print("parallel/xpbd", xpbdTwo);
         }
 
         // WorkerThreadRunner's hand-off protocol on this runtime (its memory model, Monitor and Stopwatch): 30 000

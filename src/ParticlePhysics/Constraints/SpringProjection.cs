@@ -22,42 +22,65 @@ namespace ParticlePhysics.Constraints;
 /// such a spring is a fixed point of the substep exactly when the stretch is m g alpha, whatever h.
 /// </para>
 /// <para>
-/// The springs are projected in colour order (<see cref="ConstraintColouring"/>, recomputed only when the generator's
-/// <see cref="ISpringElements.TopologyVersion"/> changes), from flat arrays copied in that order (again when
-/// <see cref="ISpringElements.ParameterVersion"/> changes): no virtual call and no allocation per spring or per step.
-/// Within a colour the pair springs come first, then the anchored ones; no two springs of a colour share a particle,
-/// so their order within it changes no bit. That is what lets a colour be split over the world's
-/// <see cref="ParticleWorld.Runner"/>: each chunk projects a range of the colour, and the result is bit-identical to
-/// one core's.
+/// The order (recomputed only when the generator's <see cref="ISpringElements.TopologyVersion"/> changes): the springs
+/// coloured (<see cref="ConstraintColouring"/>: no two springs of a colour share a particle), each colour laid out as
+/// its pair springs, then its anchored ones; then the particles split into <see cref="PartCount"/> parts of
+/// contiguous indices (<see cref="ConstraintPartition"/>: a function of the particle count and the topology, never of
+/// the runner), and that colour order distributed, stably, over one group per part: first the even parts, each with
+/// its interior (the springs with every end in it; an anchored spring has one end, so it is always in its particle's
+/// part) and its seams (the springs from it to an odd neighbour), then the odd parts' interiors. Each group is a list
+/// of batches, its springs of one colour, which share no particle, so their order within a batch changes no bit. The
+/// groups of one phase (the even parts; the odd parts) share no particle either, so a pass has two synchronisation
+/// points. With one part (small worlds, and networks whose index order is not spatial) the order is the plain colour
+/// order.
+/// </para>
+/// <para>
+/// The same order whatever runs it: on one core the groups run one after the other; with the world's
+/// <see cref="ParticleWorld.Runner"/> a phase of several groups is one hand-off, each chunk a range of whole groups,
+/// and a phase of one group hands each batch large enough over as ranges of the batch. Every spring sees the same
+/// values either way, so the result is bit-identical to one core's. The springs are projected from flat arrays
+/// copied in that order (again when <see cref="ISpringElements.ParameterVersion"/> changes): no virtual call and no
+/// allocation per spring or per step.
 /// </para>
 /// </remarks>
 public sealed class SpringProjection : IForceProjection
 {
-    // A colour is split over the runner only when each of its chunks gets at least this many springs: below it,
-    // handing the work to another core costs more than it saves.
+    // A phase of several groups goes to the runner in one hand-off, and a batch of a phase of one group (P = 1) in one
+    // hand-off of its own, only when each chunk gets at least this many springs: below it, handing the work to another
+    // core costs more than it saves.
     private const int MinSpringsPerChunk = 256;
 
     private readonly ISpringElements _springs;
-    private readonly ColourPass _pass = new();
+    private readonly GroupPass _groupPass = new();
+    private readonly BatchPass _batchPass = new();
     private int _topologyVersion = -1;
     private int _parameterVersion = -1;
     private int _particles = -1;
     private int _count;
 
-    // The hot data, in colour order: per colour its pair springs, then its anchored ones, each spring's k h^2 and c h
-    // for the substep they were prepared for (_preparedStep), beside its ends and rest length. One array of structs
+    // The hot data, in projection order: per batch its pair springs, then its anchored ones, each spring's k h^2 and
+    // c h for the substep they were prepared for (_preparedStep), beside its ends and rest length. One array of structs
     // each, so that the projection loop walks one pointer and holds few registers.
     private PairSpring[] _pairs = Array.Empty<PairSpring>();
     private AnchoredSpring[] _anchored = Array.Empty<AnchoredSpring>();
+    private double _preparedStep = double.NaN;
+
+    // The layout (ConstraintPartition): batch b is _pairs[_pairStarts[b] ..] and _anchored[_anchoredStarts[b] ..];
+    // group g is the batches [_groupBatchStarts[g], _groupBatchStarts[g + 1]); phase f the groups
+    // [_phaseStarts[f], _phaseStarts[f + 1]).
     private int[] _pairStarts = { 0 };
     private int[] _anchoredStarts = { 0 };
-    private double _preparedStep = double.NaN;
+    private int[] _groupBatchStarts = { 0 };
+    private int[] _phaseStarts = { 0 };
+    private int[] _groupStarts = { 0 };
+    private int[] _batchStarts = { 0 };
+    private int[] _partStarts = { 0 };
+    private int _colours;
 
     // The parameters (k, c per spring) in the same order, from which each substep length is prepared.
     private double[] _pairCoefficients = Array.Empty<double>();
     private double[] _anchoredCoefficients = Array.Empty<double>();
     private int[] _order = Array.Empty<int>();
-    private int[] _colourStarts = { 0 };
 
     // The generator's own layout, copied when its versions change.
     private int[] _pairFirst = Array.Empty<int>();
@@ -76,17 +99,45 @@ public sealed class SpringProjection : IForceProjection
     /// <inheritdoc />
     public IForceGenerator Force => _springs;
 
-    /// <summary>The number of colours (independent batches) of the last projection: 0 before the first.</summary>
-    public int ColourCount => _colourStarts.Length - 1;
+    /// <summary>The number of colours of the springs' colouring (<see cref="ConstraintColouring"/>): 0 before the first projection.</summary>
+    public int ColourCount => _colours;
 
     /// <summary>
-    /// The springs in the order they are projected (indices: the pair springs, then the anchored ones after them): by
-    /// colour, and within a colour its pair springs, then its anchored ones.
+    /// The number P of parts the particles are split into (contiguous index ranges; <see cref="ConstraintPartition"/>):
+    /// 1 for small worlds and for networks whose index order is not spatial; 0 before the first projection.
+    /// </summary>
+    public int PartCount => _partStarts.Length - 1;
+
+    /// <summary>Part p is the particles [PartStarts[p], PartStarts[p + 1]): <see cref="PartCount"/> + 1 entries.</summary>
+    public ReadOnlySpan<int> PartStarts => _partStarts;
+
+    /// <summary>
+    /// The springs in the order they are projected (indices: the pair springs, then the anchored ones after them):
+    /// group by group (<see cref="GroupStarts"/>), within a group batch by batch (<see cref="BatchStarts"/>), within a
+    /// batch its pair springs, then its anchored ones. With one part, that is the colour order.
     /// </summary>
     public ReadOnlySpan<int> ProjectionOrder => _order.AsSpan(0, _count);
 
-    /// <summary>Where each colour starts in <see cref="ProjectionOrder"/>, with a last entry equal to the spring count.</summary>
-    public ReadOnlySpan<int> ColourStarts => _colourStarts;
+    /// <summary>
+    /// Where each group starts in <see cref="ProjectionOrder"/>, with a last entry equal to the spring count: one group
+    /// per part, the even parts first (group g &lt; P / 2 is part 2 g: its interior and its seams, the springs from it to
+    /// an odd part), then the odd parts (group P / 2 + g is part 2 g + 1: its interior).
+    /// </summary>
+    public ReadOnlySpan<int> GroupStarts => _groupStarts;
+
+    /// <summary>
+    /// Where each phase starts among the groups, with a last entry equal to the group count: { 0, P / 2, P } (the even
+    /// parts, then the odd ones), or { 0, 1 } with one part. The groups of one phase share no particle, so a runner
+    /// takes a phase in one hand-off.
+    /// </summary>
+    public ReadOnlySpan<int> PhaseStarts => _phaseStarts;
+
+    /// <summary>
+    /// Where each batch starts in <see cref="ProjectionOrder"/>, with a last entry equal to the spring count: a batch is
+    /// the springs of one colour within one group, and no two of them share a particle. With one part the batches are
+    /// the colours.
+    /// </summary>
+    public ReadOnlySpan<int> BatchStarts => _batchStarts;
 
     /// <inheritdoc />
     /// <remarks>Nothing: under the force-based integrators the springs act as forces.</remarks>
@@ -115,21 +166,29 @@ public sealed class SpringProjection : IForceProjection
             fixed (PairSpring* pairs = _pairs)
             fixed (AnchoredSpring* anchored = _anchored)
             {
-                for (var c = 0; c + 1 < _colourStarts.Length; c++)
+                for (var f = 0; f + 1 < _phaseStarts.Length; f++)
                 {
-                    int pairBegin = _pairStarts[c], pairEnd = _pairStarts[c + 1];
-                    int anchoredBegin = _anchoredStarts[c], anchoredEnd = _anchoredStarts[c + 1];
-                    var size = pairEnd - pairBegin + (anchoredEnd - anchoredBegin);
-                    var chunks = runner is null ? 1 : Math.Min(2 * runner.MaxParallelism, size / MinSpringsPerChunk);
-                    if (chunks > 1)
+                    int groupBegin = _phaseStarts[f], groupEnd = _phaseStarts[f + 1];
+                    if (runner is not null && groupEnd - groupBegin > 1)
                     {
-                        _pass.Set(pairs, pairBegin, pairEnd, anchored, anchoredBegin, anchoredEnd, x, x0, w);
-                        runner!.Run(_pass, chunks);
+                        // The groups of a phase share no particle: one hand-off, each chunk a range of whole groups.
+                        var springs = _groupStarts[groupEnd] - _groupStarts[groupBegin];
+                        var chunks = Math.Min(groupEnd - groupBegin, springs / MinSpringsPerChunk);
+                        if (chunks > 1)
+                        {
+                            _groupPass.Set(this, groupBegin, groupEnd, pairs, anchored, x, x0, w);
+                            runner.Run(_groupPass, chunks);
+                            continue;
+                        }
+                    }
+                    else if (runner is not null)
+                    {
+                        // One group (one part): each batch as large as a colour, one hand-off each when it pays.
+                        ProjectBatchesSplit(runner, groupBegin, pairs, anchored, x, x0, w);
                         continue;
                     }
 
-                    ProjectPairs(pairs, pairBegin, pairEnd, x, x0, w);
-                    ProjectAnchored(anchored, anchoredBegin, anchoredEnd, x, x0, w);
+                    ProjectGroups(groupBegin, groupEnd, pairs, anchored, x, x0, w);
                 }
             }
         }
@@ -139,6 +198,46 @@ public sealed class SpringProjection : IForceProjection
     /// <remarks>Nothing: the damping is in the projection.</remarks>
     public void SolveVelocities(in ConstraintContext context)
     {
+    }
+
+    /// <summary>Projects the groups [begin, end) one after the other, each batch by batch: pairs, then anchored springs.</summary>
+    private unsafe void ProjectGroups(
+        int begin, int end, PairSpring* pairs, AnchoredSpring* anchored, double* x, double* x0, double* w)
+    {
+        for (var b = _groupBatchStarts[begin]; b < _groupBatchStarts[end]; b++)
+        {
+            ProjectPairs(pairs, _pairStarts[b], _pairStarts[b + 1], x, x0, w);
+            int anchoredBegin = _anchoredStarts[b], anchoredEnd = _anchoredStarts[b + 1];
+            if (anchoredBegin < anchoredEnd)
+            {
+                ProjectAnchored(anchored, anchoredBegin, anchoredEnd, x, x0, w); // (a call saved per batch on a plain cloth)
+            }
+        }
+    }
+
+    /// <summary>
+    /// Projects group <paramref name="group"/> batch by batch, each batch large enough split into ranges over the
+    /// runner (its springs share no particle, so any split gives the same bits).
+    /// </summary>
+    private unsafe void ProjectBatchesSplit(
+        IParallelRunner runner, int group, PairSpring* pairs, AnchoredSpring* anchored, double* x, double* x0, double* w)
+    {
+        for (var b = _groupBatchStarts[group]; b < _groupBatchStarts[group + 1]; b++)
+        {
+            int pairBegin = _pairStarts[b], pairEnd = _pairStarts[b + 1];
+            int anchoredBegin = _anchoredStarts[b], anchoredEnd = _anchoredStarts[b + 1];
+            var size = pairEnd - pairBegin + (anchoredEnd - anchoredBegin);
+            var chunks = Math.Min(2 * runner.MaxParallelism, size / MinSpringsPerChunk);
+            if (chunks > 1)
+            {
+                _batchPass.Set(pairs, pairBegin, pairEnd, anchored, anchoredBegin, anchoredEnd, x, x0, w);
+                runner.Run(_batchPass, chunks);
+                continue;
+            }
+
+            ProjectPairs(pairs, pairBegin, pairEnd, x, x0, w);
+            ProjectAnchored(anchored, anchoredBegin, anchoredEnd, x, x0, w);
+        }
     }
 
     /// <summary>
@@ -260,7 +359,6 @@ public sealed class SpringProjection : IForceProjection
             _pairParameters = new double[3 * pairs];
             _anchoredParticle = new int[anchored];
             _anchoredParameters = new double[6 * anchored];
-            _order = new int[count];
         }
 
         _springs.CopyPairs(_pairFirst, _pairSecond, _pairParameters);
@@ -330,8 +428,9 @@ public sealed class SpringProjection : IForceProjection
     }
 
     /// <summary>
-    /// Colours the springs in their own index order (pairs, then anchored with second end -1), then lays each colour
-    /// out as its pairs followed by its anchored springs: <see cref="ProjectionOrder"/>, and the batch starts.
+    /// Colours the springs in their own index order (pairs, then anchored with second end -1), lays each colour out as
+    /// its pairs followed by its anchored springs, and partitions that colour order into one group per part
+    /// (<see cref="ConstraintPartition"/>): <see cref="ProjectionOrder"/>, and the batch, group and phase starts.
     /// </summary>
     private void Recolour(int pairs, int anchored, int particles)
     {
@@ -347,33 +446,53 @@ public sealed class SpringProjection : IForceProjection
         }
 
         var byColour = new int[count];
-        _colourStarts = ConstraintColouring.Colour(first, second, count, particles, byColour);
-        var colours = _colourStarts.Length - 1;
-        _pairStarts = new int[colours + 1];
-        _anchoredStarts = new int[colours + 1];
+        var colourStarts = ConstraintColouring.Colour(first, second, count, particles, byColour);
+        var colours = colourStarts.Length - 1;
+        var colourOrder = new int[count];
         var next = 0;
         for (var c = 0; c < colours; c++)
         {
             // Stable within the colour: its pairs in index order, then its anchored springs in index order.
-            _pairStarts[c + 1] = _pairStarts[c];
-            _anchoredStarts[c + 1] = _anchoredStarts[c];
-            for (var k = _colourStarts[c]; k < _colourStarts[c + 1]; k++)
+            for (var k = colourStarts[c]; k < colourStarts[c + 1]; k++)
             {
                 if (byColour[k] < pairs)
                 {
-                    _order[next++] = byColour[k];
-                    _pairStarts[c + 1]++;
+                    colourOrder[next++] = byColour[k];
                 }
             }
 
-            for (var k = _colourStarts[c]; k < _colourStarts[c + 1]; k++)
+            for (var k = colourStarts[c]; k < colourStarts[c + 1]; k++)
             {
                 if (byColour[k] >= pairs)
                 {
-                    _order[next++] = byColour[k];
-                    _anchoredStarts[c + 1]++;
+                    colourOrder[next++] = byColour[k];
                 }
             }
+        }
+
+        var partition = ConstraintPartition.Build(first, second, count, particles, colourOrder, colourStarts);
+        _order = partition.Order;
+        _batchStarts = partition.BatchStarts;
+        _groupBatchStarts = partition.GroupBatchStarts;
+        _groupStarts = partition.GroupStarts;
+        _phaseStarts = partition.PhaseStarts;
+        _partStarts = partition.PartStarts;
+        _colours = colours;
+
+        // Each batch keeps its colour's arrangement (pairs, then anchored springs): its share of each hot array.
+        var batches = _batchStarts.Length - 1;
+        _pairStarts = new int[batches + 1];
+        _anchoredStarts = new int[batches + 1];
+        for (var b = 0; b < batches; b++)
+        {
+            var batchPairs = 0;
+            for (var k = _batchStarts[b]; k < _batchStarts[b + 1]; k++)
+            {
+                batchPairs += _order[k] < pairs ? 1 : 0;
+            }
+
+            _pairStarts[b + 1] = _pairStarts[b] + batchPairs;
+            _anchoredStarts[b + 1] = _anchoredStarts[b] + (_batchStarts[b + 1] - _batchStarts[b] - batchPairs);
         }
 
         _pairs = new PairSpring[pairs];
@@ -406,8 +525,41 @@ public sealed class SpringProjection : IForceProjection
         public double RestLength;
     }
 
-    /// <summary>One colour over the runner's chunks: each chunk projects its share of the colour's pairs and anchored springs.</summary>
-    private sealed unsafe class ColourPass : IParallelWork
+    /// <summary>One phase of several groups over the runner's chunks: each chunk projects a range of whole groups.</summary>
+    private sealed unsafe class GroupPass : IParallelWork
+    {
+        private SpringProjection? _owner;
+        private PairSpring* _pairs;
+        private AnchoredSpring* _anchored;
+        private double* _x;
+        private double* _x0;
+        private double* _w;
+        private int _groupBegin;
+        private int _groupEnd;
+
+        public void Set(
+            SpringProjection owner, int groupBegin, int groupEnd, PairSpring* pairs, AnchoredSpring* anchored, double* x,
+            double* x0, double* w)
+        {
+            _owner = owner;
+            _groupBegin = groupBegin;
+            _groupEnd = groupEnd;
+            _pairs = pairs;
+            _anchored = anchored;
+            _x = x;
+            _x0 = x0;
+            _w = w;
+        }
+
+        public void Execute(int chunk, int chunkCount)
+        {
+            var (begin, end) = Chunk.Range(chunk, chunkCount, _groupEnd - _groupBegin);
+            _owner!.ProjectGroups(_groupBegin + begin, _groupBegin + end, _pairs, _anchored, _x, _x0, _w);
+        }
+    }
+
+    /// <summary>One batch over the runner's chunks: each chunk projects its share of the batch's pairs and anchored springs.</summary>
+    private sealed unsafe class BatchPass : IParallelWork
     {
         private PairSpring* _pairs;
         private AnchoredSpring* _anchored;

@@ -119,7 +119,7 @@ public class XpbdTests
         var projection = cloth.Projection;
         cloth.System.Step(new Xpbd(), 1.0 / 60);
         var order = projection.ProjectionOrder.ToArray();
-        var starts = projection.ColourStarts.ToArray();
+        var starts = projection.BatchStarts.ToArray();
         Assert.Equal(cloth.Springs.Count, order.Length);
         Assert.Equal(Enumerable.Range(0, order.Length), order.OrderBy(s => s));
         for (var c = 0; c + 1 < starts.Length; c++)

@@ -42,26 +42,34 @@ public class ParallelRunnerTests
     }
 
     [Fact]
-    public void Xpbd_splits_colours_and_particle_passes_over_the_runner_with_the_same_bits()
+    public void Xpbd_runs_a_substep_in_three_hand_offs_with_the_same_bits_on_any_runner()
     {
-        // The 64 x 64 cloth at 60 Hz: 4096 particles (both particle passes split) and 23 938 springs in 13 colours of
-        // about 1 840 (each colour split), with anchored springs on a third of the particles so that colours hold both
-        // kinds. One core, two worker threads, three, and a host scheduler that runs the chunks in reverse order.
+        // The 64 x 64 cloth at 60 Hz: 4096 particles, 23 938 springs in 12 strips of 5 1/3 rows, and anchored springs
+        // on a third of the particles so that the batches hold both kinds. Per substep: the even strips with their
+        // seams, the odd strips, the velocities (the prediction stays on the calling thread below 32 768 particles).
+        // It was 15: the prediction, each of the 13 colours, the velocities. One core; runners of parallelism 1, 2 and 3; a host scheduler that runs the chunks
+        // concurrently in reverse order, and one that runs them one at a time in reverse order.
         var serial = XpbdCloth(out _);
         StateMetrics.Run(serial, new Xpbd(), 1.0 / 60, 20);
         var expected = StateMetrics.BitHash(serial.State);
+        using var one = new WorkerThreadRunner(1);
         using var two = new WorkerThreadRunner(2);
         using var three = new WorkerThreadRunner(3);
-        foreach (var runner in new IParallelRunner[] { two, three, new ReverseOrderRunner() })
+        foreach (var runner in new IParallelRunner[] { one, two, three, new ReverseOrderRunner(), new SequentialReverseRunner() })
         {
             var counting = new CountingRunner(runner);
-            var parallel = XpbdCloth(out var colours);
+            var parallel = XpbdCloth(out var phases);
             parallel.Runner = counting;
             StateMetrics.Run(parallel, new Xpbd(), 1.0 / 60, 20);
             Assert.Equal(expected, StateMetrics.BitHash(parallel.State));
+            if (runner.MaxParallelism == 1)
+            {
+                Assert.Equal(0, counting.Runs); // nothing to share
+                continue;
+            }
 
-            // Per substep: the prediction, every colour, the velocities.
-            Assert.Equal(20 * 10 * (colours + 2), counting.Runs);
+            Assert.Equal(2, phases);
+            Assert.Equal(20 * 10 * (phases + 1), counting.Runs);
             Assert.True(counting.SmallestChunkCount > 1, $"a pass ran in {counting.SmallestChunkCount} chunk");
         }
     }
@@ -116,8 +124,8 @@ public class ParallelRunnerTests
 
     private static ParticleWorld Cloth() => new ClothScenario { Resolution = 1.0 / 39 }.Build();
 
-    /// <summary>The 64 x 64 cloth with an anchored spring on every third particle, and its projection's colour count.</summary>
-    private static ParticleWorld XpbdCloth(out int colours)
+    /// <summary>The 64 x 64 cloth with an anchored spring on every third particle, and its projection's phase count.</summary>
+    private static ParticleWorld XpbdCloth(out int phases)
     {
         var cloth = new ClothScenario { Resolution = 1.0 / 63 }.CreateBuilder().Build();
         for (var i = 2; i < cloth.System.Count; i += 3)
@@ -127,7 +135,7 @@ public class ParallelRunnerTests
         }
 
         cloth.System.Step(new Xpbd(), 1.0 / 60);
-        colours = cloth.Projection.ColourCount;
+        phases = cloth.Projection.PhaseStarts.Length - 1;
         cloth.System.SetState(new ClothScenario { Resolution = 1.0 / 63 }.Build().State);
         cloth.System.Time = 0;
         return cloth.System;
@@ -140,6 +148,20 @@ public class ParallelRunnerTests
 
         public void Run(IParallelWork work, int chunkCount) =>
             System.Threading.Tasks.Parallel.For(0, chunkCount, i => work.Execute(chunkCount - 1 - i, chunkCount));
+    }
+
+    /// <summary>A host's scheduler that runs the chunks one at a time, last first, on the calling thread.</summary>
+    private sealed class SequentialReverseRunner : IParallelRunner
+    {
+        public int MaxParallelism => 2;
+
+        public void Run(IParallelWork work, int chunkCount)
+        {
+            for (var chunk = chunkCount - 1; chunk >= 0; chunk--)
+            {
+                work.Execute(chunk, chunkCount);
+            }
+        }
     }
 
     /// <summary>A runner that counts its calls and the fewest chunks it was asked for, and hands the work on.</summary>
