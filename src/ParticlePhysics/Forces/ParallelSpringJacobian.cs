@@ -60,19 +60,15 @@ internal sealed unsafe class ParallelSpringJacobian
         }
     }
 
-    /// <summary>
-    /// J w added into y in one pass over the particles: each particle takes its springs in increasing spring order and
-    /// computes each one's share (s I + t u u^T)(w_a - w_b) itself, adding it at a first end and subtracting it at a
-    /// second. A spring's share is computed twice, once at each end, by the same operations, and each particle's sums
-    /// are those of the sequential loop in the same order (the same bits), with one hand-off and no per-spring slots
-    /// to write and read back.
-    /// </summary>
-    public void Product(double* w, double* y, double* linear, int* first, int* second, SpringIncidence incidence, IParallelRunner runner)
+    public void Product(double* w, double* y, double* linear, int* first, int* second, int count, SpringIncidence incidence, IParallelRunner runner)
     {
-        fixed (int* start = incidence.Start, incident = incidence.Incident)
+        EnsureSlots(count);
+        var chunks = 4 * runner.MaxParallelism;
+        fixed (double* slots = _perSpring)
         {
-            _product.Set(w, y, linear, first, second, start, incident, incidence.Start.Length - 1);
-            runner.Run(_product, 4 * runner.MaxParallelism);
+            _product.Set(w, linear, first, second, count, slots);
+            runner.Run(_product, chunks);
+            incidence.Gather(y, slots, firstEndAdds: true, runner, chunks);
         }
     }
 
@@ -257,60 +253,29 @@ internal sealed unsafe class ParallelSpringJacobian
     private sealed class ProductPass : IParallelWork
     {
         private double* _w;
-        private double* _y;
         private double* _linear;
         private int* _first;
         private int* _second;
-        private int* _start;
-        private int* _incident;
-        private int _particles;
+        private int _count;
+        private double* _slots;
 
-        public void Set(double* w, double* y, double* linear, int* first, int* second, int* start, int* incident, int particles)
+        public void Set(double* w, double* linear, int* first, int* second, int count, double* slots)
         {
             _w = w;
-            _y = y;
             _linear = linear;
             _first = first;
             _second = second;
-            _start = start;
-            _incident = incident;
-            _particles = particles;
+            _count = count;
+            _slots = slots;
         }
 
         public void Execute(int chunk, int chunkCount)
         {
-            var (begin, end) = Chunk.Range(chunk, chunkCount, _particles);
-            for (var i = begin; i < end; i++)
+            var (begin, end) = Chunk.Range(chunk, chunkCount, _count);
+            for (var s = begin; s < end; s++)
             {
-                var yi = _y + (3L * i);
-                double yx = yi[0], yy = yi[1], yz = yi[2];
-                for (var e = _start[i]; e < _start[i + 1]; e++)
-                {
-                    // The spring's share (s I + t u u^T)(w_a - w_b) at its first end, as SpringNetwork.AddJacobianProduct's loop computes it.
-                    var code = _incident[e];
-                    var s = code >> 1;
-                    double* wa = _w + (3L * _first[s]), wb = _w + (3L * _second[s]), q = _linear + (5L * s);
-                    double dx = wa[0] - wb[0], dy = wa[1] - wb[1], dz = wa[2] - wb[2];
-                    double ux = q[0], uy = q[1], uz = q[2], iso = q[3];
-                    var axial = q[4] * ((ux * dx) + (uy * dy) + (uz * dz));
-                    double px = (iso * dx) + (axial * ux), py = (iso * dy) + (axial * uy), pz = (iso * dz) + (axial * uz);
-                    if ((code & 1) == 0)
-                    {
-                        yx += px;
-                        yy += py;
-                        yz += pz;
-                    }
-                    else
-                    {
-                        yx -= px;
-                        yy -= py;
-                        yz -= pz;
-                    }
-                }
-
-                yi[0] = yx;
-                yi[1] = yy;
-                yi[2] = yz;
+                var y = _slots + (3 * s);
+                SpringLinearization.Product(_w, 3L * _first[s], 3L * _second[s], _linear + (5 * s), y);
             }
         }
     }

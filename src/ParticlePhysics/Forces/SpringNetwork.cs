@@ -495,12 +495,11 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         {
             if (_runner is not null && _jacobian is not null && _parallel is not null)
             {
-                _jacobian.Product(wp, y, lin, first, second, _parallel.Incidence, _runner);
+                _jacobian.Product(wp, y, lin, first, second, _pairs.Count, _parallel.Incidence, _runner);
             }
             else
             {
-                // The hot loop of every conjugate-gradient iteration: each spring's share (s I + t u u^T)(w_a - w_b), added at
-                // its first end and subtracted at its second.
+                // The hot loop of every conjugate-gradient iteration, written out as SpringLinearization.Product.
                 var count = _pairs.Count;
                 for (var s = 0; s < count; s++)
                 {
