@@ -19,7 +19,7 @@ namespace ParticlePhysics.Benchmarks;
 /// library step allocates nothing; exits 1 if not.</item>
 /// <item><c>stability [--n 64] [--integrators a,b] [--write] [--verbose]</c>: the largest stable dt of each
 /// integrator (<c>--dt X</c>: one trial at X instead of the search).</item>
-/// <item><c>profile [--n 128] [--seconds 20] [--integrator xpbd|implicit-euler [--steps N] [--runner 2] [--tolerance 1e-3]]</c>:
+/// <item><c>profile [--n 128] [--seconds 20] [--integrator xpbd|implicit-euler [--steps N] [--runner 2] [--tolerance 1e-3] [--preconditioner block-jacobi]]</c>:
 /// RK4 cloth steps (or xpbd or implicit-Euler frames) in a loop, for <c>perf record</c> or callgrind
 /// (with <c>--runner</c>, <see cref="RunnerChoice"/>'s options choose the runner).</item>
 /// <item><c>xpbd [--sizes 32,64,128,256] [--rounds 7] [--cores [--previous-runner | --spin-us N]]</c>: a short
@@ -282,6 +282,7 @@ internal static class Program
         var implicitEuler = new ImplicitEuler
         {
             Tolerance = double.Parse(tolerance ?? "1e-3", CultureInfo.InvariantCulture),
+            Preconditioner = Option(args, "--preconditioner") == "block-jacobi" ? ImplicitPreconditioner.BlockJacobi : ImplicitPreconditioner.Multigrid,
         };
         var runner = runnerThreads is null ? null : RunnerChoice.Create(args, int.Parse(runnerThreads, CultureInfo.InvariantCulture));
         using var disposeRunner = runner as IDisposable;
@@ -311,7 +312,7 @@ internal static class Program
 
         Console.WriteLine(string.Create(
             CultureInfo.InvariantCulture,
-            $"n = {n}: {frames} implicit-euler frames at tolerance {implicitEuler.Tolerance:R}, {perSecond * 1e3:F2} ms per simulated second, {(double)iterations / Math.Max(1, frames):F3} CG iterations per frame, checksum {checksum:R}"));
+            $"n = {n}: {frames} implicit-euler frames ({implicitEuler.Preconditioner}) at tolerance {implicitEuler.Tolerance:R}, {perSecond * 1e3:F2} ms per simulated second, {(double)iterations / Math.Max(1, frames):F3} CG iterations per frame, checksum {checksum:R}"));
         return 0;
     }
 
