@@ -9,7 +9,8 @@ DOTNET_PerfMapEnabled=1 (and DOTNET_TieredCompilation=0, so that each method is 
 (/tmp/perf-PID.map, PID = valgrind's process id) names the JIT-compiled code; native code keeps callgrind's function
 name. The self cost of each method in the LONG run minus the SHORT run, divided by DIVISOR (for instance 2 N for
 3 and 1 resolves of the contact stage on N particles: start-up, setup and compilation cancel), is printed as
-instructions (Ir), L1 data misses (D1mr + D1mw) and last-level data misses (DLmr + DLmw), largest first.
+instructions (Ir), L1 data misses (D1mr + D1mw) and last-level data misses (DLmr + DLmw), largest first; from runs
+without --cache-sim=yes, instructions and each method's share of them.
 
 Callgrind's format: after `positions: instr line`, a cost line is "address line cost...", where an address or line
 may be absolute, relative to the previous one (+n, -n) or the same (*); the line after `calls=` is the inclusive
@@ -100,12 +101,18 @@ def main(argv):
     zero = [0] * len(events)
     difference = {k: [(b - a) / divisor for a, b in zip(short.get(k, zero), long.get(k, zero))]
                   for k in set(short) | set(long)}
-    ir, d1, ll = events.index('Ir'), (events.index('D1mr'), events.index('D1mw')), (events.index('DLmr'), events.index('DLmw'))
+    ir = events.index('Ir')
     total = [sum(v[i] for v in difference.values()) for i in range(len(events))]
+    rows = [('total', total)] + sorted(difference.items(), key=lambda kv: -abs(kv[1][ir]))[:top]
+    if 'D1mr' not in events:  # a run without --cache-sim=yes: instructions only
+        print(f"{'method':60} {'Ir':>10} {'share':>7}")
+        for name, v in rows:
+            print(f'{name[:60]:60} {v[ir]:10.1f} {v[ir] / total[ir]:7.1%}')
+        return
+    d1, ll = (events.index('D1mr'), events.index('D1mw')), (events.index('DLmr'), events.index('DLmw'))
     print(f"{'method':60} {'Ir':>10} {'L1 miss':>8} {'LL miss':>8}")
-    for name, v in [('total', total)] + sorted(difference.items(), key=lambda kv: -abs(kv[1][ir]))[:top]:
+    for name, v in rows:
         print(f'{name[:60]:60} {v[ir]:10.1f} {v[d1[0]] + v[d1[1]]:8.2f} {v[ll[0]] + v[ll[1]]:8.2f}')
-
 
 if __name__ == '__main__':
     main(sys.argv)
