@@ -1003,6 +1003,17 @@ internal sealed unsafe class AggregationMultigrid
         private void PostSmoothRowCore(
             int i, double* values, int* rowStart, int* column, double* b, double* x, double* inverse, double* output)
         {
+            var r = ResidualRow(i, values, rowStart, column, b, x);
+            double* w = inverse + (9L * i), xi = x + (3L * i);
+            output[0] = xi[0] + ((w[0] * r.X) + (w[1] * r.Y) + (w[2] * r.Z));
+            output[1] = xi[1] + ((w[3] * r.X) + (w[4] * r.Y) + (w[5] * r.Z));
+            output[2] = xi[2] + ((w[6] * r.X) + (w[7] * r.Y) + (w[8] * r.Z));
+        }
+
+        /// <summary>Row i of the residual, B_i - A_ii X_i - sum_j A_ij X_j, in that order.</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private Vector3d ResidualRow(int i, double* values, int* rowStart, int* column, double* b, double* x)
+        {
             double* d = values + (9L * i), xi = x + (3L * i);
             double x0 = xi[0], x1 = xi[1], x2 = xi[2];
             var bi = b + (3L * i);
@@ -1018,10 +1029,7 @@ internal sealed unsafe class AggregationMultigrid
                 r2 -= (m[6] * y0) + (m[7] * y1) + (m[8] * y2);
             }
 
-            var w = inverse + (9L * i);
-            output[0] = x0 + ((w[0] * r0) + (w[1] * r1) + (w[2] * r2));
-            output[1] = x1 + ((w[3] * r0) + (w[4] * r1) + (w[5] * r2));
-            output[2] = x2 + ((w[6] * r0) + (w[7] * r1) + (w[8] * r2));
+            return new Vector3d(r0, r1, r2);
         }
 
         public void Execute(int chunk, int chunkCount)
@@ -1047,26 +1055,10 @@ internal sealed unsafe class AggregationMultigrid
                     double b0 = 0.0, b1 = 0.0, b2 = 0.0;
                     for (var k = start[a]; k < start[a + 1]; k++)
                     {
-                        // The residual row of member i: B_i - A_i X.
-                        var i = members[k];
-                        double* d = values + (9L * i), xi = x + (3L * i);
-                        double x0 = xi[0], x1 = xi[1], x2 = xi[2];
-                        var bi = b + (3L * i);
-                        var r0 = bi[0] - ((d[0] * x0) + (d[1] * x1) + (d[2] * x2));
-                        var r1 = bi[1] - ((d[3] * x0) + (d[4] * x1) + (d[5] * x2));
-                        var r2 = bi[2] - ((d[6] * x0) + (d[7] * x1) + (d[8] * x2));
-                        for (var e = rowStart[i]; e < rowStart[i + 1]; e++)
-                        {
-                            double* m = values + (9L * (Count + e)), xj = x + (3L * column[e]);
-                            double y0 = xj[0], y1 = xj[1], y2 = xj[2];
-                            r0 -= (m[0] * y0) + (m[1] * y1) + (m[2] * y2);
-                            r1 -= (m[3] * y0) + (m[4] * y1) + (m[5] * y2);
-                            r2 -= (m[6] * y0) + (m[7] * y1) + (m[8] * y2);
-                        }
-
-                        b0 += r0;
-                        b1 += r1;
-                        b2 += r2;
+                        var r = ResidualRow(members[k], values, rowStart, column, b, x); // member k's residual row
+                        b0 += r.X;
+                        b1 += r.Y;
+                        b2 += r.Z;
                     }
 
                     var nb = nextB + (3L * a);
