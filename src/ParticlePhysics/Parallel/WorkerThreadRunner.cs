@@ -134,49 +134,13 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
     public TimeSpan SpinLimit { get; }
 
     /// <summary>How many times the waiting threads slept and were signalled (for the tests and benchmarks).</summary>
-    internal long Sleeps
-    {
-        get
-        {
-            var sleeps = _caller.Signals;
-            foreach (var worker in _workers)
-            {
-                sleeps += worker.Signals;
-            }
-
-            return sleeps;
-        }
-    }
+    internal long Sleeps => SumOverWaiters(w => w.Signals);
 
     /// <summary>Signals sent twice to a waiter: 0 unless the hand-off protocol is broken (for the tests).</summary>
-    internal long DoubleSignals
-    {
-        get
-        {
-            var doubles = _caller.DoubleSignals;
-            foreach (var worker in _workers)
-            {
-                doubles += worker.DoubleSignals;
-            }
-
-            return doubles;
-        }
-    }
+    internal long DoubleSignals => SumOverWaiters(w => w.DoubleSignals);
 
     /// <summary>How many waits spun first (for the tests and benchmarks).</summary>
-    internal long SpinningWaits
-    {
-        get
-        {
-            var spins = _caller.Spins;
-            foreach (var worker in _workers)
-            {
-                spins += worker.Spins;
-            }
-
-            return spins;
-        }
-    }
+    internal long SpinningWaits => SumOverWaiters(w => w.Spins);
 
     /// <inheritdoc />
     public void Run(IParallelWork work, int chunkCount)
@@ -352,6 +316,18 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
                 return;
             }
         }
+    }
+
+    /// <summary>A counter summed over the caller's waiter and every worker's (diagnostics, not the hand-off path).</summary>
+    private long SumOverWaiters(Func<HandOffWaiter, long> counter)
+    {
+        var sum = counter(_caller);
+        foreach (var worker in _workers)
+        {
+            sum += counter(worker);
+        }
+
+        return sum;
     }
 
     private static uint RunNumber(long claim) => (uint)(claim >>> 32);
