@@ -176,13 +176,20 @@ internal static class RunnerHandOffs
 
         var wall = runners.Select(_ => new double[rounds]).ToArray();
         var cpu = runners.Select(_ => new double[rounds]).ToArray();
+        long sleeps = adaptive.Sleeps, spins = adaptive.SpinningWaits, handOffs = 0;
+        var counting = new CountingRunner(adaptive);
         for (var r = 0; r < rounds; r++)
         {
             for (var k = 0; k < runners.Length; k++)
             {
-                (wall[k][r], cpu[k][r]) = Measure(() => simulateSecond(runners[k].Runner));
+                var runner = ReferenceEquals(runners[k].Runner, adaptive) ? counting : runners[k].Runner;
+                (wall[k][r], cpu[k][r]) = Measure(() => simulateSecond(runner));
             }
         }
+
+        handOffs = counting.Runs;
+        sleeps = adaptive.Sleeps - sleeps;
+        spins = adaptive.SpinningWaits - spins;
 
         Console.WriteLine(same ? "same bits with every runner as on one core" : "error: a runner gave DIFFERENT bits from one core");
         Console.WriteLine("ms per simulated second: fastest round (median); CPU: the process's CPU time (median); x one core, x previous: medians of the per-round ratios of wall time");
@@ -193,7 +200,28 @@ internal static class RunnerHandOffs
                 $"  {runners[k].Name,-22} {wall[k].Min(),9:F2} ({Median(wall[k]),9:F2}) ms, CPU {Median(cpu[k]),9:F2} ms; x one core {MedianRatio(wall[0], wall[k]),6:F3}, x previous {MedianRatio(wall[1], wall[k]),6:F3}"));
         }
 
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"  the adaptive runner over its rounds: {handOffs} hand-offs; its threads slept {sleeps} times ({(double)sleeps / handOffs:F3} per hand-off) and spun first {spins} times"));
         return same ? 0 : 1;
+    }
+
+    /// <summary>A runner that counts the runs it passes on (the wrapper costs one interface call per run).</summary>
+    private sealed class CountingRunner : IParallelRunner
+    {
+        private readonly IParallelRunner _inner;
+
+        public CountingRunner(IParallelRunner inner) => _inner = inner;
+
+        public long Runs { get; private set; }
+
+        public int MaxParallelism => _inner.MaxParallelism;
+
+        public void Run(IParallelWork work, int chunkCount)
+        {
+            Runs++;
+            _inner.Run(work, chunkCount);
+        }
     }
 
     /// <summary>Wall and process CPU time [ms] of <paramref name="action"/>.</summary>
