@@ -54,10 +54,12 @@ namespace ParticlePhysics.Parallel;
 public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
 {
     /// <summary>
-    /// The spin limit of <see cref="WorkerThreadRunner(int)"/>: 50 microseconds, about what waking a thread that has
-    /// slept a few tens of microseconds costs on a virtual machine (docs/architecture.md, Parallelism).
+    /// The spin limit of <see cref="WorkerThreadRunner(int)"/>: 200 microseconds, longer than the serial work between
+    /// the engine's passes (40 to 60 us per xpbd substep of a 64 x 64 cloth), so that a worker is still awake for the
+    /// next pass, and a few times what waking a sleeping thread costs on a virtual machine (docs/architecture.md,
+    /// Parallelism).
     /// </summary>
-    public static readonly TimeSpan DefaultSpinLimit = TimeSpan.FromTicks(500);
+    public static readonly TimeSpan DefaultSpinLimit = TimeSpan.FromTicks(2000);
 
     /// <summary>The longest spin limit accepted: 1 ms, about a scheduler time slice.</summary>
     public static readonly TimeSpan MaximumSpinLimit = TimeSpan.FromMilliseconds(1);
