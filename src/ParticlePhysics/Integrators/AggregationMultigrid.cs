@@ -186,19 +186,7 @@ internal sealed unsafe class AggregationMultigrid
         return _levels[0];
     }
 
-    private static void Run(IParallelRunner? runner, IParallelWork work)
-    {
-        if (runner is { MaxParallelism: > 1 })
-        {
-            runner.Run(work, Chunks);
-            return;
-        }
-
-        for (var c = 0; c < Chunks; c++)
-        {
-            work.Execute(c, Chunks);
-        }
-    }
+    private static void Run(IParallelRunner? runner, IParallelWork work) => Chunk.RunAll(runner, work, Chunks);
 
     /// <summary>
     /// One V-cycle on coarse level l, X ~ A_l^-1 B, from a level whose pre-smoothing from zero, X = D^-1 B, is done (the
@@ -537,16 +525,7 @@ internal sealed unsafe class AggregationMultigrid
             _smoothed = smoothed;
         }
 
-        public double Sum()
-        {
-            var sum = 0.0;
-            for (var c = 0; c < Chunks; c++)
-            {
-                sum += _partial[c];
-            }
-
-            return sum;
-        }
+        public double Sum() => Chunk.Sum(_partial);
 
         public void Execute(int chunk, int chunkCount)
         {
@@ -1078,16 +1057,7 @@ internal sealed unsafe class AggregationMultigrid
         {
             _operation = operation;
             _passCount = count;
-            if (runner is { MaxParallelism: > 1 } && Count >= ParallelRows)
-            {
-                runner.Run(this, Chunks);
-                return;
-            }
-
-            for (var c = 0; c < Chunks; c++)
-            {
-                Execute(c, Chunks);
-            }
+            Chunk.RunAll(Count >= ParallelRows ? runner : null, this, Chunks); // small levels stay on the calling thread
         }
 
         /// <summary>Factorises the dense operator of a small level (Cholesky); block Jacobi if it is large or not positive definite.</summary>

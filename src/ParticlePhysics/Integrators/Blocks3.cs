@@ -80,11 +80,7 @@ internal static unsafe class Blocks3
     {
         for (var i = 0; i < count; i++)
         {
-            double* m = blocks + (9L * i), xi = x + (3L * i), yi = y + (3L * i);
-            double x0 = xi[0], x1 = xi[1], x2 = xi[2];
-            yi[0] = (m[0] * x0) + (m[1] * x1) + (m[2] * x2);
-            yi[1] = (m[3] * x0) + (m[4] * x1) + (m[5] * x2);
-            yi[2] = (m[6] * x0) + (m[7] * x1) + (m[8] * x2);
+            Multiply(blocks + (9L * i), x + (3L * i), y + (3L * i));
         }
     }
 }

@@ -192,7 +192,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         _scalar = alpha;
         _secondScalar = beta;
         var rr = Run(UpdatePass);
-        LastJacobiProduct = SecondSum();
+        LastJacobiProduct = Chunk.Sum(_secondPartial);
         return rr;
     }
 
@@ -338,9 +338,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                     sum += r1 * r1;
                     sum += r2 * r2;
                     var z = _pZ + o;
-                    z[0] = (m[0] * r0) + (m[1] * r1) + (m[2] * r2);
-                    z[1] = (m[3] * r0) + (m[4] * r1) + (m[5] * r2);
-                    z[2] = (m[6] * r0) + (m[7] * r1) + (m[8] * r2);
+                    Blocks3.Multiply(m, _pR + o, z); // z = D^-1 r with the r just written
                     second += (r0 * z[0]) + (r1 * z[1]) + (r2 * z[2]);
                 }
 
@@ -348,15 +346,9 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
             case JacobiPass:
                 for (var i = begin; i < end; i++)
                 {
-                    double* r = _pR + (3 * i), z = _pZ + (3 * i), m = _pBlocks + (9 * i);
-                    double rx = r[0], ry = r[1], rz = r[2];
-                    var zx = (m[0] * rx) + (m[1] * ry) + (m[2] * rz);
-                    var zy = (m[3] * rx) + (m[4] * ry) + (m[5] * rz);
-                    var zz = (m[6] * rx) + (m[7] * ry) + (m[8] * rz);
-                    z[0] = zx;
-                    z[1] = zy;
-                    z[2] = zz;
-                    sum += (rx * zx) + (ry * zy) + (rz * zz);
+                    double* r = _pR + (3 * i), z = _pZ + (3 * i);
+                    Blocks3.Multiply(_pBlocks + (9 * i), r, z);
+                    sum += (r[0] * z[0]) + (r[1] * z[1]) + (r[2] * z[2]);
                 }
 
                 break;
@@ -431,17 +423,6 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         }
     }
 
-    private double SecondSum()
-    {
-        var total = 0.0;
-        for (var c = 0; c < _secondPartial.Length; c++)
-        {
-            total += _secondPartial[c];
-        }
-
-        return total;
-    }
-
     private double Run(int operation)
     {
         _operation = operation;
@@ -459,26 +440,9 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
             _pBlocks = blocks;
             _pMasses = masses;
             _pInverseMasses = inverseMasses;
-            var chunks = _partial.Length;
-            if (_runner is not null)
-            {
-                _runner.Run(this, chunks);
-            }
-            else
-            {
-                for (var c = 0; c < chunks; c++)
-                {
-                    Execute(c, chunks);
-                }
-            }
+            Chunk.RunAll(_runner, this, _partial.Length);
         }
 
-        var total = 0.0;
-        for (var c = 0; c < _partial.Length; c++)
-        {
-            total += _partial[c];
-        }
-
-        return total;
+        return Chunk.Sum(_partial);
     }
 }
