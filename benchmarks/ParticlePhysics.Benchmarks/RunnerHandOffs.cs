@@ -76,16 +76,8 @@ internal static class RunnerHandOffs
         var rendezvous = chunkMicroseconds < 0;
         var work = new BusyWork(rendezvous ? 0 : (long)Math.Round(chunkMicroseconds * perMicrosecond), rendezvous);
         var serial = (long)Math.Round(serialMicroseconds * perMicrosecond);
-        using var previous = new PreviousWorkerThreadRunner(parallelism);
-        using var blocking = new WorkerThreadRunner(parallelism, TimeSpan.Zero);
-        using var adaptive = new WorkerThreadRunner(parallelism, _spinLimit);
-        var runners = new (string Name, IParallelRunner? Runner)[]
-        {
-            ("one core", null),
-            ("previous runner", previous),
-            ("spin limit 0", blocking),
-            (string.Create(CultureInfo.InvariantCulture, $"adaptive, {adaptive.SpinLimit.TotalMilliseconds * 1000} us"), adaptive),
-        };
+        using var contenders = new Contenders(parallelism);
+        var runners = contenders.Rows;
         var oneCoreMicroseconds = serialMicroseconds + (chunks * Math.Max(0, chunkMicroseconds));
         var runs = (int)Math.Max(200, milliseconds * 1000 / Math.Max(2, oneCoreMicroseconds));
         var wall = runners.Select(_ => new double[rounds]).ToArray();
@@ -152,16 +144,8 @@ internal static class RunnerHandOffs
             return 1;
         }
 
-        using var previous = new PreviousWorkerThreadRunner(parallelism);
-        using var blocking = new WorkerThreadRunner(parallelism, TimeSpan.Zero);
-        using var adaptive = new WorkerThreadRunner(parallelism, _spinLimit);
-        var runners = new (string Name, IParallelRunner? Runner)[]
-        {
-            ("one core", null),
-            ("previous runner", previous),
-            ("spin limit 0", blocking),
-            (string.Create(CultureInfo.InvariantCulture, $"adaptive, {adaptive.SpinLimit.TotalMilliseconds * 1000} us"), adaptive),
-        };
+        using var contenders = new Contenders(parallelism);
+        var runners = contenders.Rows;
         Console.WriteLine(string.Create(
             CultureInfo.InvariantCulture,
             $"{engine}, {n} x {n} cloth, one simulated second from rest per round: one core and {parallelism} threads, {rounds} rounds alternating; load average {LoadAverage()}, {Environment.ProcessorCount} cores"));
@@ -176,7 +160,8 @@ internal static class RunnerHandOffs
 
         var wall = runners.Select(_ => new double[rounds]).ToArray();
         var cpu = runners.Select(_ => new double[rounds]).ToArray();
-        long sleeps = adaptive.Sleeps, spins = adaptive.SpinningWaits, handOffs = 0;
+        var adaptive = contenders.Adaptive;
+        long sleeps = adaptive.Sleeps, spins = adaptive.SpinningWaits;
         var counting = new CountingRunner(adaptive);
         for (var r = 0; r < rounds; r++)
         {
@@ -187,7 +172,7 @@ internal static class RunnerHandOffs
             }
         }
 
-        handOffs = counting.Runs;
+        var handOffs = counting.Runs;
         sleeps = adaptive.Sleeps - sleeps;
         spins = adaptive.SpinningWaits - spins;
 
@@ -204,6 +189,41 @@ internal static class RunnerHandOffs
             CultureInfo.InvariantCulture,
             $"  the adaptive runner over its rounds: {handOffs} hand-offs; its threads slept {sleeps} times ({(double)sleeps / handOffs:F3} per hand-off) and spun first {spins} times"));
         return same ? 0 : 1;
+    }
+
+    /// <summary>
+    /// The runners every case compares, in the order of its rows: one core (no runner), the previous runner, the shipped
+    /// runner that never spins, and the shipped runner at the spin limit of <c>--spin-us</c> (its default otherwise).
+    /// </summary>
+    private sealed class Contenders : IDisposable
+    {
+        private readonly PreviousWorkerThreadRunner _previous;
+        private readonly WorkerThreadRunner _blocking;
+
+        public Contenders(int parallelism)
+        {
+            _previous = new PreviousWorkerThreadRunner(parallelism);
+            _blocking = new WorkerThreadRunner(parallelism, TimeSpan.Zero);
+            Adaptive = new WorkerThreadRunner(parallelism, _spinLimit);
+            Rows = new (string Name, IParallelRunner? Runner)[]
+            {
+                ("one core", null),
+                ("previous runner", _previous),
+                ("spin limit 0", _blocking),
+                (string.Create(CultureInfo.InvariantCulture, $"adaptive, {Adaptive.SpinLimit.TotalMilliseconds * 1000} us"), Adaptive),
+            };
+        }
+
+        public WorkerThreadRunner Adaptive { get; }
+
+        public (string Name, IParallelRunner? Runner)[] Rows { get; }
+
+        public void Dispose()
+        {
+            _previous.Dispose();
+            _blocking.Dispose();
+            Adaptive.Dispose();
+        }
     }
 
     /// <summary>A runner that counts the runs it passes on (the wrapper costs one interface call per run).</summary>
