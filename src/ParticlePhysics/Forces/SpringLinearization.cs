@@ -123,8 +123,8 @@ internal static unsafe class SpringLinearization
     /// <summary>
     /// Adds into the diagonal block of each particle in [begin, end) the blocks s I + t u u^T of its springs, in
     /// increasing spring order (<see cref="SpringIncidence"/>'s rows), summed in locals and stored once: the same
-    /// additions in the same order as <see cref="AddBlockToBoth"/> spring by spring, so the same bits, with 9 stores per
-    /// particle instead of 9 read-modify-writes per spring end.
+    /// additions in the same order as adding each spring's block into both its ends spring by spring, so the same bits,
+    /// with 9 stores per particle instead of 9 read-modify-writes per spring end.
     /// </summary>
     public static void GatherBlocks(double* blocks, double* linear, int* start, int* incident, int begin, int end)
     {
@@ -160,33 +160,6 @@ internal static unsafe class SpringLinearization
             block[7] = b7;
             block[8] = b8;
         }
-    }
-
-    /// <summary>Adds s I + t u u^T into the blocks at <paramref name="first"/> and <paramref name="second"/>, each value computed once for both.</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public static void AddBlockToBoth(double* first, double* second, double* linear)
-    {
-        double ux = linear[0], uy = linear[1], uz = linear[2], s = linear[3], t = linear[4];
-        double xx = s + (t * ux * ux), yy = s + (t * uy * uy), zz = s + (t * uz * uz);
-        double xy = t * ux * uy, xz = t * ux * uz, yz = t * uy * uz;
-        first[0] += xx;
-        first[1] += xy;
-        first[2] += xz;
-        first[3] += xy;
-        first[4] += yy;
-        first[5] += yz;
-        first[6] += xz;
-        first[7] += yz;
-        first[8] += zz;
-        second[0] += xx;
-        second[1] += xy;
-        second[2] += xz;
-        second[3] += xy;
-        second[4] += yy;
-        second[5] += yz;
-        second[6] += xz;
-        second[7] += yz;
-        second[8] += zz;
     }
 
     /// <summary>

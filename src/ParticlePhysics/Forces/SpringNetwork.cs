@@ -457,15 +457,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
                     into[b + 2] -= yz;
                 }
 
-                // The diagonal blocks, gathered per particle from the linearisation just written (the same sums as
-                // AddDiagonalBlocks' loop, spring by spring, and far fewer stores).
-                _parallel ??= new ParallelSpringForces();
-                _parallel.Incidence.Update(_pairs, _system.Count);
-                var incidence = _parallel.Incidence;
-                fixed (int* start = incidence.Start, incident = incidence.Incident)
-                {
-                    SpringLinearization.GatherBlocks(d, lin, start, incident, 0, _system.Count);
-                }
+                GatherDiagonalBlocks(d, lin); // from the linearisation just written
             }
         }
 
@@ -543,7 +535,6 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         }
 
         fixed (double* d = blocks, lin = _linear)
-        fixed (int* first = _pairs.First, second = _pairs.Second)
         {
             if (_runner is not null && _jacobian is not null && _parallel is not null)
             {
@@ -551,15 +542,27 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             }
             else
             {
-                var count = _pairs.Count;
-                for (var s = 0; s < count; s++)
-                {
-                    SpringLinearization.AddBlockToBoth(d + (9L * first[s]), d + (9L * second[s]), lin + (LinearStride * s));
-                }
+                GatherDiagonalBlocks(d, lin);
             }
         }
 
         AddAnchoredBlocks(blocks);
+    }
+
+    /// <summary>
+    /// Adds the springs' diagonal blocks on one thread, gathered per particle in increasing spring order: the sums a
+    /// spring-by-spring scatter into both ends gives, with 9 stores per particle instead of 9 read-modify-writes per
+    /// spring end (the parallel pass gathers the same way, so every path gives the same bits).
+    /// </summary>
+    private unsafe void GatherDiagonalBlocks(double* blocks, double* linear)
+    {
+        _parallel ??= new ParallelSpringForces();
+        var incidence = _parallel.Incidence;
+        incidence.Update(_pairs, _system.Count);
+        fixed (int* start = incidence.Start, incident = incidence.Incident)
+        {
+            SpringLinearization.GatherBlocks(blocks, linear, start, incident, 0, _system.Count);
+        }
     }
 
     /// <summary>Adds the anchored springs' diagonal blocks (their only block: the anchor does not move).</summary>
