@@ -586,7 +586,9 @@ internal sealed unsafe class AggregationMultigrid
                     if (update)
                     {
                         var o = 3L * i;
-                        double r0 = UpdateComponent(o), r1 = UpdateComponent(o + 1), r2 = UpdateComponent(o + 2);
+                        var r0 = ConjugateGradientPasses.UpdateComponent(_z, _w, _p, _s, _dv, _r, Alpha, Beta, o);
+                        var r1 = ConjugateGradientPasses.UpdateComponent(_z, _w, _p, _s, _dv, _r, Alpha, Beta, o + 1);
+                        var r2 = ConjugateGradientPasses.UpdateComponent(_z, _w, _p, _s, _dv, _r, Alpha, Beta, o + 2);
                         sum += r0 * r0;
                         sum += r1 * r1;
                         sum += r2 * r2;
@@ -613,20 +615,6 @@ internal sealed unsafe class AggregationMultigrid
             }
 
             _partial[chunk] = sum;
-        }
-
-        /// <summary>p = z + beta p, s = w + beta s, dv += alpha p, r -= alpha s for one component; returns the new r.</summary>
-        [MethodImpl(MethodImplOptions.AggressiveInlining)]
-        private double UpdateComponent(long k)
-        {
-            var p = _z[k] + (Beta * _p[k]);
-            _p[k] = p;
-            var s = _w[k] + (Beta * _s[k]);
-            _s[k] = s;
-            _dv[k] += Alpha * p;
-            var r = _r[k] - (Alpha * s);
-            _r[k] = r;
-            return r;
         }
     }
 

@@ -333,7 +333,9 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                 {
                     var o = 3 * i;
                     double* m = _pBlocks + (9 * i);
-                    double r0 = UpdateComponent(o), r1 = UpdateComponent(o + 1), r2 = UpdateComponent(o + 2);
+                    var r0 = UpdateComponent(_pZ, _pW, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o);
+                    var r1 = UpdateComponent(_pZ, _pW, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o + 1);
+                    var r2 = UpdateComponent(_pZ, _pW, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o + 2);
                     sum += r0 * r0;
                     sum += r1 * r1;
                     sum += r2 * r2;
@@ -374,18 +376,22 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         _secondPartial[chunk] = second;
     }
 
-    /// <summary>p = z + beta p, s = w + beta s, dv += alpha p, r -= alpha s for one component; returns the new r.</summary>
+    /// <summary>
+    /// One component k of the iteration's update, p = z + beta p, s = w + beta s, dv += alpha p, r -= alpha s; returns
+    /// the new r. Shared with the multigrid's pass that fuses the update with its restriction.
+    /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private double UpdateComponent(int k)
+    public static double UpdateComponent(
+        double* z, double* w, double* p, double* s, double* dv, double* r, double alpha, double beta, long k)
     {
-        var p = _pZ[k] + (_secondScalar * _pP[k]);
-        _pP[k] = p;
-        var s = _pW[k] + (_secondScalar * _pS[k]);
-        _pS[k] = s;
-        _pDv[k] += _scalar * p;
-        var r = _pR[k] - (_scalar * s);
-        _pR[k] = r;
-        return r;
+        var pk = z[k] + (beta * p[k]);
+        p[k] = pk;
+        var sk = w[k] + (beta * s[k]);
+        s[k] = sk;
+        dv[k] += alpha * pk;
+        var rk = r[k] - (alpha * sk);
+        r[k] = rk;
+        return rk;
     }
 
     /// <summary>D_i^-1 = (M_i - J_ii)^-1 in place for particle i (cofactors, <see cref="Blocks3.Invert(double*, double*)"/>).</summary>
