@@ -48,9 +48,10 @@ public sealed class Xpbd : IPositionBasedIntegrator
     private const int MinParticlesPerChunk = 1024;
 
     // The prediction only from this many particles per chunk. It comes right after the world's accelerations, which run
-    // on the calling thread, so the runner's workers have gone to sleep by then, and waking one costs more than half a
-    // pass of about 2 ns per particle saves: on the 64 x 64 cloth with WorkerThreadRunner(2) the split prediction took
-    // 28 to 55 us per substep on average against 8 to 9 us on one thread. Left on the calling thread, the prediction
+    // on the calling thread, so the runner's workers may have gone to sleep by then, and waking one costs more than half
+    // a pass of about 2 ns per particle saves: on the 64 x 64 cloth with WorkerThreadRunner(2) at its first spin limit
+    // (50 us) the split prediction took 28 to 55 us per substep on average against 8 to 9 us on one thread (not measured
+    // again at 200 us, where the workers spin through more of the gap). Left on the calling thread, the prediction
     // lets the projection's first phase wake the worker while the calling thread already projects. (The velocity
     // pass follows the projection's last phase, with the worker still awake.)
     private const int MinParticlesPerPredictionChunk = 16384;
