@@ -29,7 +29,7 @@ internal static class ClothQuality
 
     public static int Run(string[] args)
     {
-        var n = int.Parse(Option(args, "--n") ?? "64", CultureInfo.InvariantCulture);
+        var n = int.Parse(Program.Option(args, "--n") ?? "64", CultureInfo.InvariantCulture);
         var solvers = new List<(string Name, Func<IIntegrator> Create, double Dt)>
         {
             ("xpbd, 10 substeps", () => new Xpbd(10), Frame),
@@ -89,12 +89,6 @@ internal static class ClothQuality
         Console.WriteLine(string.Create(
             CultureInfo.InvariantCulture,
             $"| {name} | {outcome.Dt:G6} | {outcome.Steps} | {outcome.LowestPoint:F6} | {outcome.LowestPoint - reference.LowestPoint:+0.0E+0;-0.0E+0;0} | {outcome.MeanStretch:P3} | {outcome.LargestStretch:P2} | {distance:G3} |"));
-    }
-
-    private static string? Option(string[] args, string name)
-    {
-        var i = Array.IndexOf(args, name);
-        return i >= 0 && i + 1 < args.Length ? args[i + 1] : null;
     }
 
     /// <summary>A solver's cloth after <see cref="Seconds"/>: its positions and the figures taken from them.</summary>

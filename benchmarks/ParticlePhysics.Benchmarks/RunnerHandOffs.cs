@@ -1,5 +1,4 @@
 using System;
-using System.Collections.Generic;
 using System.Diagnostics;
 using System.Globalization;
 using System.IO;
@@ -30,19 +29,19 @@ internal static class RunnerHandOffs
 
     public static int Run(string[] args)
     {
-        var parallelism = int.Parse(Option(args, "--parallelism") ?? "2", CultureInfo.InvariantCulture);
-        var rounds = int.Parse(Option(args, "--rounds") ?? "5", CultureInfo.InvariantCulture);
-        if (Option(args, "--spin-us") is { } spin)
+        var parallelism = int.Parse(Program.Option(args, "--parallelism") ?? "2", CultureInfo.InvariantCulture);
+        var rounds = int.Parse(Program.Option(args, "--rounds") ?? "5", CultureInfo.InvariantCulture);
+        if (Program.Option(args, "--spin-us") is { } spin)
         {
             _spinLimit = TimeSpan.FromTicks((long)Math.Round(double.Parse(spin, CultureInfo.InvariantCulture) * 10));
         }
 
-        if (Option(args, "--engine") is { } engine)
+        if (Program.Option(args, "--engine") is { } engine)
         {
-            return RunEngine(engine, int.Parse(Option(args, "--n") ?? "64", CultureInfo.InvariantCulture), parallelism, rounds);
+            return RunEngine(engine, int.Parse(Program.Option(args, "--n") ?? "64", CultureInfo.InvariantCulture), parallelism, rounds);
         }
 
-        var milliseconds = double.Parse(Option(args, "--ms") ?? "150", CultureInfo.InvariantCulture);
+        var milliseconds = double.Parse(Program.Option(args, "--ms") ?? "150", CultureInfo.InvariantCulture);
         var perMicrosecond = Calibrate();
         Console.WriteLine(string.Create(
             CultureInfo.InvariantCulture,
@@ -104,7 +103,7 @@ internal static class RunnerHandOffs
         {
             Console.WriteLine(string.Create(
                 CultureInfo.InvariantCulture,
-                $"  {runners[k].Name,-22} {wall[k].Min(),8:F2} ({Median(wall[k]),8:F2}) us per run, CPU {Median(cpu[k]),8:F2} us; x one core {MedianRatio(wall[0], wall[k]),6:F3}, x previous {MedianRatio(wall[1], wall[k]),6:F3}"));
+                $"  {runners[k].Name,-22} {wall[k].Min(),8:F2} ({Rounds.Median(wall[k]),8:F2}) us per run, CPU {Rounds.Median(cpu[k]),8:F2} us; x one core {Rounds.MedianRatio(wall[0], wall[k]),6:F3}, x previous {Rounds.MedianRatio(wall[1], wall[k]),6:F3}"));
         }
     }
 
@@ -168,7 +167,7 @@ internal static class RunnerHandOffs
             for (var k = 0; k < runners.Length; k++)
             {
                 var runner = ReferenceEquals(runners[k].Runner, adaptive) ? counting : runners[k].Runner;
-                (wall[k][r], cpu[k][r]) = Measure(() => simulateSecond(runner));
+                (wall[k][r], cpu[k][r]) = Rounds.Time(() => simulateSecond(runner));
             }
         }
 
@@ -182,7 +181,7 @@ internal static class RunnerHandOffs
         {
             Console.WriteLine(string.Create(
                 CultureInfo.InvariantCulture,
-                $"  {runners[k].Name,-22} {wall[k].Min(),9:F2} ({Median(wall[k]),9:F2}) ms, CPU {Median(cpu[k]),9:F2} ms; x one core {MedianRatio(wall[0], wall[k]),6:F3}, x previous {MedianRatio(wall[1], wall[k]),6:F3}"));
+                $"  {runners[k].Name,-22} {wall[k].Min(),9:F2} ({Rounds.Median(wall[k]),9:F2}) ms, CPU {Rounds.Median(cpu[k]),9:F2} ms; x one core {Rounds.MedianRatio(wall[0], wall[k]),6:F3}, x previous {Rounds.MedianRatio(wall[1], wall[k]),6:F3}"));
         }
 
         Console.WriteLine(string.Create(
@@ -244,18 +243,6 @@ internal static class RunnerHandOffs
         }
     }
 
-    /// <summary>Wall and process CPU time [ms] of <paramref name="action"/>.</summary>
-    private static (double Wall, double Cpu) Measure(Action action)
-    {
-        using var process = Process.GetCurrentProcess();
-        var cpu = process.TotalProcessorTime;
-        var clock = Stopwatch.StartNew();
-        action();
-        var wall = clock.Elapsed.TotalMilliseconds;
-        process.Refresh();
-        return (wall, (process.TotalProcessorTime - cpu).TotalMilliseconds);
-    }
-
     /// <summary>Wall and process CPU time per run [us] of <paramref name="runs"/> runs.</summary>
     private static (double Wall, double Cpu) Measure(IParallelRunner? runner, BusyWork work, int chunks, long serial, int runs)
     {
@@ -306,22 +293,6 @@ internal static class RunnerHandOffs
 
     private static string LoadAverage() =>
         File.Exists("/proc/loadavg") ? string.Join(' ', File.ReadAllText("/proc/loadavg").Split(' ').Take(3)) : "unknown";
-
-    private static double Median(IReadOnlyList<double> values)
-    {
-        var sorted = values.OrderBy(x => x).ToArray();
-        return sorted.Length % 2 == 1 ? sorted[sorted.Length / 2] : 0.5 * (sorted[(sorted.Length / 2) - 1] + sorted[sorted.Length / 2]);
-    }
-
-    /// <summary>The median over the rounds of numerator[r] / denominator[r].</summary>
-    private static double MedianRatio(double[] numerator, double[] denominator) =>
-        Median(numerator.Select((x, r) => x / denominator[r]).ToArray());
-
-    private static string? Option(string[] args, string name)
-    {
-        var i = Array.IndexOf(args, name);
-        return i >= 0 && i + 1 < args.Length ? args[i + 1] : null;
-    }
 
     /// <summary>Chunks of a dependent chain of multiply-adds: a fixed time per chunk, no memory traffic.</summary>
     private sealed class BusyWork : IParallelWork

@@ -1,5 +1,4 @@
 using System;
-using System.Diagnostics;
 using System.Globalization;
 using System.Linq;
 using ParticlePhysics.Parallel;
@@ -21,8 +20,8 @@ internal static class XpbdComparison
 {
     public static int Run(string[] args)
     {
-        var sizes = (Option(args, "--sizes") ?? "32,64,128,256").Split(',').Select(s => int.Parse(s, CultureInfo.InvariantCulture)).ToArray();
-        var rounds = int.Parse(Option(args, "--rounds") ?? "7", CultureInfo.InvariantCulture);
+        var sizes = (Program.Option(args, "--sizes") ?? "32,64,128,256").Split(',').Select(s => int.Parse(s, CultureInfo.InvariantCulture)).ToArray();
+        var rounds = int.Parse(Program.Option(args, "--rounds") ?? "7", CultureInfo.InvariantCulture);
         var cores = args.Contains("--cores");
         Console.WriteLine(cores
             ? $"xpbd, 10 substeps per 1/60 s frame, one simulated second from rest: library on one core vs {RunnerChoice.Describe(args, 2)}, alternating"
@@ -60,7 +59,7 @@ internal static class XpbdComparison
         var (a, b) = Alternate(RunC, library.SimulateSecond, rounds);
         Console.WriteLine(string.Create(
             CultureInfo.InvariantCulture,
-            $"n = {n,3} ({library.SpringCount} springs, same bits): C {a.BestWall:F2} ({a.BestCpu:F2}) ms, library {b.BestWall:F2} ({b.BestCpu:F2}) ms; C# / C {b.BestWall / a.BestWall:F3} (CPU {b.BestCpu / a.BestCpu:F3}), median {Median(b.Wall, a.Wall):F3} (CPU {Median(b.Cpu, a.Cpu):F3}); library {b.BestWall * 1e6 / library.ProjectionsPerSecond:F2} ns, C {a.BestWall * 1e6 / library.ProjectionsPerSecond:F2} ns per projection"));
+            $"n = {n,3} ({library.SpringCount} springs, same bits): C {a.BestWall:F2} ({a.BestCpu:F2}) ms, library {b.BestWall:F2} ({b.BestCpu:F2}) ms; C# / C {b.BestWall / a.BestWall:F3} (CPU {b.BestCpu / a.BestCpu:F3}), median {Rounds.MedianRatio(b.Wall, a.Wall):F3} (CPU {Rounds.MedianRatio(b.Cpu, a.Cpu):F3}); library {b.BestWall * 1e6 / library.ProjectionsPerSecond:F2} ns, C {a.BestWall * 1e6 / library.ProjectionsPerSecond:F2} ns per projection"));
         return true;
     }
 
@@ -90,7 +89,7 @@ internal static class XpbdComparison
         var (a, b) = Alternate(OneCore, TwoCores, rounds);
         Console.WriteLine(string.Create(
             CultureInfo.InvariantCulture,
-            $"n = {n,3} (checksum {one:R}, {(same ? "same bits on one and two cores" : "DIFFERENT states on one and two cores")}): one core {a.BestWall:F2} ({a.BestCpu:F2}) ms, two {b.BestWall:F2} ({b.BestCpu:F2}) ms; speedup {a.BestWall / b.BestWall:F3}, median {Median(a.Wall, b.Wall):F3}; CPU two / one {b.BestCpu / a.BestCpu:F3}, median {Median(b.Cpu, a.Cpu):F3}"));
+            $"n = {n,3} (checksum {one:R}, {(same ? "same bits on one and two cores" : "DIFFERENT states on one and two cores")}): one core {a.BestWall:F2} ({a.BestCpu:F2}) ms, two {b.BestWall:F2} ({b.BestCpu:F2}) ms; speedup {a.BestWall / b.BestWall:F3}, median {Rounds.MedianRatio(a.Wall, b.Wall):F3}; CPU two / one {b.BestCpu / a.BestCpu:F3}, median {Rounds.MedianRatio(b.Cpu, a.Cpu):F3}"));
         return same;
     }
 
@@ -114,19 +113,6 @@ internal static class XpbdComparison
         return (a, b);
     }
 
-    /// <summary>The median over the rounds of numerator[r] / denominator[r].</summary>
-    private static double Median(double[] numerator, double[] denominator)
-    {
-        var ratios = numerator.Select((x, r) => x / denominator[r]).OrderBy(x => x).ToArray();
-        return ratios.Length % 2 == 1 ? ratios[ratios.Length / 2] : 0.5 * (ratios[(ratios.Length / 2) - 1] + ratios[ratios.Length / 2]);
-    }
-
-    private static string? Option(string[] args, string name)
-    {
-        var i = Array.IndexOf(args, name);
-        return i >= 0 && i + 1 < args.Length ? args[i + 1] : null;
-    }
-
     private sealed class Times
     {
         public Times(int rounds)
@@ -145,15 +131,6 @@ internal static class XpbdComparison
 
         public double BestCpu => Cpu.Min();
 
-        public void Measure(int round, Action action)
-        {
-            using var process = Process.GetCurrentProcess();
-            var cpu = process.TotalProcessorTime;
-            var clock = Stopwatch.StartNew();
-            action();
-            Wall[round] = clock.Elapsed.TotalMilliseconds;
-            process.Refresh();
-            Cpu[round] = (process.TotalProcessorTime - cpu).TotalMilliseconds;
-        }
+        public void Measure(int round, Action action) => (Wall[round], Cpu[round]) = Rounds.Time(action);
     }
 }
