@@ -46,7 +46,7 @@ public class ParallelRunnerTests
     {
         // The 64 x 64 cloth at 60 Hz: 4096 particles, 23 938 springs in 12 strips of 5 1/3 rows, and anchored springs
         // on a third of the particles so that the batches hold both kinds. Per substep: the even strips with their
-        // seams, the odd strips, the velocities (the prediction stays on the calling thread below 32 768 particles).
+        // seams, the odd strips, the velocities (the prediction stays on the calling thread below 16 384 particles).
         // It was 15: the prediction, each of the 13 colours, the velocities. One core; runners of parallelism 1, 2 and 3; a host scheduler that runs the chunks
         // concurrently in reverse order, and one that runs them one at a time in reverse order.
         var serial = XpbdCloth(out _);
@@ -71,6 +71,27 @@ public class ParallelRunnerTests
             Assert.Equal(2, phases);
             Assert.Equal(20 * 10 * (phases + 1), counting.Runs);
             Assert.True(counting.SmallestChunkCount > 1, $"a pass ran in {counting.SmallestChunkCount} chunk");
+        }
+    }
+
+    [Fact]
+    public void Xpbd_splits_the_prediction_of_a_large_cloth_with_the_same_bits()
+    {
+        // The 128 x 128 cloth, 16 384 particles: from there the prediction runs in chunks of at least 8192 particles, so
+        // a substep hands off one more pass than the 64 x 64 cloth's three (the prediction, the projection's phases,
+        // the velocities).
+        var serial = new ClothScenario { Resolution = 1.0 / 127 }.Build();
+        StateMetrics.Run(serial, new Xpbd(), 1.0 / 60, 2);
+        using var two = new WorkerThreadRunner(2);
+        foreach (var runner in new IParallelRunner[] { two, new SequentialReverseRunner() })
+        {
+            var cloth = new ClothScenario { Resolution = 1.0 / 127 }.CreateBuilder().Build();
+            var counting = new CountingRunner(runner);
+            cloth.System.Runner = counting;
+            StateMetrics.Run(cloth.System, new Xpbd(), 1.0 / 60, 2);
+            Assert.Equal(StateMetrics.BitHash(serial.State), StateMetrics.BitHash(cloth.System.State));
+            var phases = cloth.Projection.PhaseStarts.Length - 1;
+            Assert.Equal(2 * 10 * (phases + 2), counting.Runs);
         }
     }
 
