@@ -793,8 +793,12 @@ internal sealed unsafe class AggregationMultigrid
         private const int ResidualRestrictPass = 0;
         private const int PostSmoothPass = 1;
 
-        // Below this many rows a level's passes stay on the calling thread: waking the workers would cost more.
-        private const int ParallelRows = 1024;
+        // Below this many rows a level's passes stay on the calling thread: waking the workers would cost more. 256: at
+        // the runner's 200 us spin limit the workers are awake between the cycle's passes, and on the 64 x 64 cloth
+        // (levels of 1024, 256, 64 and 16 aggregates) running level 2 on two threads made the two-thread second 151 ms
+        // against 169 ms with 1024 (means of the fastest rounds of four alternating runs of `runner --engine
+        // implicit-euler --n 64`). The 64-row level's passes (a few microseconds) stay on the calling thread.
+        private const int ParallelRows = 256;
 
         private readonly int[] _rowStart;
         private readonly int[] _column;
