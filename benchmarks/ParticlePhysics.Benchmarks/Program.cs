@@ -19,9 +19,10 @@ namespace ParticlePhysics.Benchmarks;
 /// library step allocates nothing; exits 1 if not.</item>
 /// <item><c>stability [--n 64] [--integrators a,b] [--write] [--verbose]</c>: the largest stable dt of each
 /// integrator (<c>--dt X</c>: one trial at X instead of the search).</item>
-/// <item><c>profile [--n 128] [--seconds 20] [--integrator xpbd|implicit-euler [--steps N] [--runner 2] [--tolerance 1e-3] [--preconditioner block-jacobi]]</c>:
+/// <item><c>profile [--n 128] [--seconds 20] [--integrator xpbd|implicit-euler [--steps N] [--runner 2] [--tolerance 1e-3] [--preconditioner block-jacobi] [--per-frame]]</c>:
 /// RK4 cloth steps (or xpbd or implicit-Euler frames) in a loop, for <c>perf record</c> or callgrind
-/// (with <c>--runner</c>, <see cref="RunnerChoice"/>'s options choose the runner).</item>
+/// (with <c>--runner</c>, <see cref="RunnerChoice"/>'s options choose the runner; <c>--per-frame</c> prints the
+/// implicit solve's iterations of each frame of the first simulated second).</item>
 /// <item><c>xpbd [--sizes 32,64,128,256] [--rounds 7] [--cores [--previous-runner | --spin-us N]]</c>: a short
 /// side-by-side timing of the C xpbd and the library in one process, alternating (or, with <c>--cores</c>, one core
 /// against two), after a bit-for-bit check (<see cref="XpbdComparison"/>).</item>
@@ -35,6 +36,8 @@ namespace ParticlePhysics.Benchmarks;
 /// <item><c>contacts [--sizes 1000,10000,100000] [--resolves 5] [--state DIR]</c>: the contact stage on settled piles,
 /// outside BenchmarkDotNet: what each pile holds, a checksum of the result, the fastest resolve; for callgrind
 /// (<see cref="ContactCosts"/>).</item>
+/// <item><c>preconditioners [--n 32] [--frames 30] [--omega 0.6]</c>: conjugate-gradient iterations on one real
+/// implicit-Euler step of the cloth with candidate preconditioners (<see cref="PreconditionerLab"/>; slow, no timing).</item>
 /// <item><c>--quick</c> (before BenchmarkDotNet's arguments): small cloths, for CI.</item>
 /// </list>
 /// After a BenchmarkDotNet run it exits 1 if any benchmark failed or has no result (NA).
@@ -43,6 +46,11 @@ internal static class Program
 {
     private static int Main(string[] args)
     {
+        if (args.Length > 0 && args[0] == "preconditioners")
+        {
+            return PreconditionerLab.Run(args[1..]);
+        }
+
         if (args.Length > 0 && args[0] == "verify")
         {
             return Verification.Run();
@@ -300,6 +308,11 @@ internal static class Program
 
             cloth.System.Step(implicitEuler, 1.0 / framesPerSecond);
             iterations += implicitEuler.LastIterations;
+            if (Array.IndexOf(args, "--per-frame") >= 0 && frames < framesPerSecond)
+            {
+                Console.Write(implicitEuler.LastIterations.ToString(CultureInfo.InvariantCulture) + " ");
+            }
+
             frames++;
         }
 
