@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# How fast this machine is against the one issue 13's figures were measured on, by the same code: the issue's
+# implicit-Euler second (64 x 64 cloth, 60 Hz, tolerance 1e-3) took 0.19 s there with the library of commit THEN
+# (block Jacobi, 24 CG iterations per step). This builds that library (git archive of THEN) and the working tree's,
+# runs Program.cs against each in turn, alternating, and prints each run and the ratio now / then, so that
+# 0.19 s x ratio is the working tree's time on the issue's machine. Needs git history and the .NET SDK only.
+#   run.sh [pairs] [rounds]      pairs of alternating processes (default 4), timed rounds per process (default 7)
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+root="$(cd "$here/../.." && pwd)"
+THEN=${THEN:-460bc80^} # the last commit before the multigrid: the library the issue measured
+pairs=${1:-4}
+rounds=${2:-7}
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$work/then"
+git -C "$root" archive "$THEN" src Directory.Build.props Directory.Packages.props global.json nuget.config .editorconfig \
+  | tar -x -C "$work/then"
+for side in then now; do
+  lib="$work/then/src/ParticlePhysics/ParticlePhysics.csproj"
+  [ "$side" = now ] && lib="$root/src/ParticlePhysics/ParticlePhysics.csproj"
+  mkdir -p "$work/$side-app"
+  cp "$here/Program.cs" "$work/$side-app/"
+  cat > "$work/$side-app/IssueMachine.csproj" <<PROJ
+<Project Sdk="Microsoft.NET.Sdk">
+  <PropertyGroup>
+    <OutputType>Exe</OutputType>
+    <TargetFramework>net10.0</TargetFramework>
+    <Nullable>enable</Nullable>
+    <NuGetAudit>false</NuGetAudit>
+  </PropertyGroup>
+  <ItemGroup>
+    <ProjectReference Include="$lib" />
+  </ItemGroup>
+</Project>
+PROJ
+  dotnet build -c Release -v q -nologo "$work/$side-app" > "$work/$side-build.log" 2>&1 || { cat "$work/$side-build.log"; exit 1; }
+done
+ratios=()
+for ((i = 1; i <= pairs; i++)); do
+  then_line=$(LABEL="then ($THEN)" dotnet "$work/then-app/bin/Release/net10.0/IssueMachine.dll" "$rounds")
+  now_line=$(LABEL="now" dotnet "$work/now-app/bin/Release/net10.0/IssueMachine.dll" "$rounds")
+  echo "$then_line"
+  echo "$now_line"
+  t=$(sed -E 's/.*fastest ([0-9.]+) ms.*/\1/' <<< "$then_line")
+  n=$(sed -E 's/.*fastest ([0-9.]+) ms.*/\1/' <<< "$now_line")
+  ratios+=("$(python3 -c "print(f'{$n / $t:.3f}')")")
+done
+python3 - "${ratios[@]}" <<'PY'
+import statistics, sys
+r = sorted(float(x) for x in sys.argv[1:])
+m = statistics.median(r)
+print(f"now / then, fastest rounds of each pair: {' '.join(f'{x:.3f}' for x in r)}; median {m:.3f}")
+print(f"on the issue's machine (then 0.19 s): now about {0.19 * m:.3f} s per simulated second")
+PY
