@@ -11,9 +11,10 @@ namespace ParticlePhysics.Integrators;
 /// </summary>
 /// <remarks>
 /// The vectors, 3 values per particle: b the right-hand side, dv the solution, r = b - A dv the residual, z = P r the
-/// preconditioned residual, w = A z, p the search direction and s = A p; jw receives the system's J times a vector;
-/// the blocks (9 values per particle) are D_i^-1 = (M_i - J_ii)^-1 once <see cref="InvertBlocks"/> has run. A pinned
-/// particle's components are 0 in every vector but dv's warm start (filtered there too).
+/// preconditioned residual, w = A z, p the search direction and s = A p; jw receives the system's J times a vector,
+/// and the passes that read it leave it 0 for the next product (no pass of its own clears it); the blocks (9 values
+/// per particle) are D_i^-1 = (M_i - J_ii)^-1 once <see cref="InvertBlocks"/> has run. A pinned particle's components
+/// are 0 in every vector but dv's warm start (filtered there too).
 /// </remarks>
 internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 {
@@ -145,7 +146,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         }
     }
 
-    /// <summary>b = h (f + h jw) on the free particles, 0 on pinned ones (jw = K v0); returns b . b.</summary>
+    /// <summary>b = h (f + h jw) on the free particles, 0 on pinned ones (jw = K v0), then jw = 0; returns b . b.</summary>
     public double RightHandSide(double[] force, double h)
     {
         CheckLength(force);
@@ -177,10 +178,10 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         }
     }
 
-    /// <summary>r = b - (M dv - jw) on the free particles (jw = J dv), 0 on pinned ones; returns r . r.</summary>
+    /// <summary>r = b - (M dv - jw) on the free particles (jw = J dv), 0 on pinned ones, then jw = 0; returns r . r.</summary>
     public double Residual() => Run(ResidualPass);
 
-    /// <summary>w = M z - jw on the free particles (jw = J z), 0 on pinned ones; returns z . w.</summary>
+    /// <summary>w = M z - jw on the free particles (jw = J z), 0 on pinned ones, then jw = 0; returns z . w.</summary>
     public double MassMinusJacobian() => Run(MassMinusJacobianPass);
 
     /// <summary>
@@ -249,6 +250,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                     if (_pInverseMasses[i] == 0.0)
                     {
                         bi[0] = bi[1] = bi[2] = 0.0;
+                        jw[0] = jw[1] = jw[2] = 0.0;
                         continue;
                     }
 
@@ -256,6 +258,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                     bi[0] = h * (f[0] + (h * jw[0]));
                     bi[1] = h * (f[1] + (h * jw[1]));
                     bi[2] = h * (f[2] + (h * jw[2]));
+                    jw[0] = jw[1] = jw[2] = 0.0;
                     sum += bi[0] * bi[0];
                     sum += bi[1] * bi[1];
                     sum += bi[2] * bi[2];
@@ -295,6 +298,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                     if (_pInverseMasses[i] == 0.0)
                     {
                         r[0] = r[1] = r[2] = 0.0;
+                        jw[0] = jw[1] = jw[2] = 0.0;
                         continue;
                     }
 
@@ -302,6 +306,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                     r[0] = bi[0] - ((m * x[0]) - jw[0]);
                     r[1] = bi[1] - ((m * x[1]) - jw[1]);
                     r[2] = bi[2] - ((m * x[2]) - jw[2]);
+                    jw[0] = jw[1] = jw[2] = 0.0;
                     sum += r[0] * r[0];
                     sum += r[1] * r[1];
                     sum += r[2] * r[2];
@@ -316,11 +321,13 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                     if (_pInverseMasses[i] == 0.0)
                     {
                         w[0] = w[1] = w[2] = 0.0;
+                        jw[0] = jw[1] = jw[2] = 0.0;
                         continue;
                     }
 
                     var m = _pMasses[i];
                     double wx = (m * z[0]) - jw[0], wy = (m * z[1]) - jw[1], wz = (m * z[2]) - jw[2];
+                    jw[0] = jw[1] = jw[2] = 0.0;
                     w[0] = wx;
                     w[1] = wy;
                     w[2] = wz;

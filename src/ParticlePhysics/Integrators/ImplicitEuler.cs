@@ -295,8 +295,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         if (known > 0)
         {
             passes.WarmStart(_lastDv!, known > 1 ? _previousDv : null);
-            Array.Clear(jw, 0, n);
-            system.AddJacobianProduct(dv, jw);
+            system.AddJacobianProduct(dv, jw); // (jw is 0: the right-hand side's pass cleared it as it read it)
             rr = passes.Residual();
         }
         else
@@ -421,7 +420,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     /// </summary>
     private double ApplySystemMatrix(ILinearizableSystem system, ConjugateGradientPasses passes, double time, double end)
     {
-        Array.Clear(passes.JacobianProduct, 0, passes.Z.Length);
+        // jw is 0 here: every pass that reads it (the right-hand side, the residual, the last w = M z - jw) clears it
+        // as it goes, so no separate pass clears it before each product.
         system.AddJacobianProduct(passes.Z, passes.JacobianProduct);
         var zw = passes.MassMinusJacobian();
         if (!DoubleChecks.IsFinite(zw))
