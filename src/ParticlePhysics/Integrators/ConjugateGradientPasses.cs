@@ -18,7 +18,6 @@ namespace ParticlePhysics.Integrators;
 /// </remarks>
 internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 {
-    private const int DotPass = 0;
     private const int RightHandSidePass = 1;
     private const int WarmStartPass = 2;
     private const int ResidualPass = 3;
@@ -133,19 +132,6 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         }
     }
 
-    /// <summary>a . b.</summary>
-    public double Dot(double[] a, double[] b)
-    {
-        CheckLength(a);
-        CheckLength(b);
-        fixed (double* pa = a, pb = b)
-        {
-            _a = pa;
-            _b = pb;
-            return Run(DotPass);
-        }
-    }
-
     /// <summary>b = h (f + h jw) on the free particles, 0 on pinned ones (jw = K v0), then jw = 0; returns b . b.</summary>
     public double RightHandSide(double[] force, double h)
     {
@@ -235,13 +221,6 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         var second = 0.0;
         switch (_operation)
         {
-            case DotPass:
-                for (var k = 3 * begin; k < 3 * end; k++)
-                {
-                    sum += _a[k] * _b[k];
-                }
-
-                break;
             case RightHandSidePass:
                 for (var i = begin; i < end; i++)
                 {
