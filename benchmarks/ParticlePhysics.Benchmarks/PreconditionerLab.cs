@@ -163,7 +163,7 @@ internal static class PreconditionerLab
             }
         }
 
-        var schwarz = new Patches(a, patches);
+        var schwarz = new BlockSet(a, patches);
         Func<double[], double[]> additiveSchwarz = r => Add(schwarz.Apply(r), Prolong(coarse.Solve(Restrict(r, p0, 3 * aggCount)), p0));
 
         // The candidates, with the products with the fine A that an iteration costs (the iteration's own, A p, included).
@@ -362,40 +362,13 @@ internal static class PreconditionerLab
         return new BlockSet(a, groups.Values.Select(l => l.ToArray()).ToList());
     }
 
+    /// <summary>z = sum over the blocks of R^T A_block^-1 R r: block Jacobi for disjoint blocks, additive Schwarz for overlapping ones.</summary>
     private sealed class BlockSet
     {
         private readonly List<int[]> _dofs;
         private readonly List<Dense> _factors;
 
         public BlockSet(Csr a, List<int[]> dofs)
-        {
-            _dofs = dofs;
-            _factors = dofs.Select(d => new Dense(a.Sub(d))).ToList();
-        }
-
-        public double[] Apply(double[] r)
-        {
-            var z = new double[r.Length];
-            for (var g = 0; g < _dofs.Count; g++)
-            {
-                var d = _dofs[g];
-                var local = _factors[g].Solve(d.Select(k => r[k]).ToArray());
-                for (var i = 0; i < d.Length; i++)
-                {
-                    z[d[i]] = local[i];
-                }
-            }
-
-            return z;
-        }
-    }
-
-    private sealed class Patches
-    {
-        private readonly List<int[]> _dofs;
-        private readonly List<Dense> _factors;
-
-        public Patches(Csr a, List<int[]> dofs)
         {
             _dofs = dofs.Where(d => d.Length > 0).ToList();
             _factors = _dofs.Select(d => new Dense(a.Sub(d))).ToList();
