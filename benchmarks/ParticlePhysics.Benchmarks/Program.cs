@@ -296,6 +296,7 @@ internal static class Program
         using var disposeRunner = runner as IDisposable;
         cloth.System.Runner = runner;
         var fixedSteps = steps is null ? -1L : long.Parse(steps, CultureInfo.InvariantCulture);
+        var firstSecond = new int[framesPerSecond]; // each frame's iterations, for --per-frame
         var clock = Stopwatch.StartNew();
         long frames = 0, iterations = 0;
         while (fixedSteps >= 0 ? frames < fixedSteps : clock.Elapsed.TotalSeconds < seconds)
@@ -308,9 +309,9 @@ internal static class Program
 
             cloth.System.Step(implicitEuler, 1.0 / framesPerSecond);
             iterations += implicitEuler.LastIterations;
-            if (Array.IndexOf(args, "--per-frame") >= 0 && frames < framesPerSecond)
+            if (frames < framesPerSecond)
             {
-                Console.Write(implicitEuler.LastIterations.ToString(CultureInfo.InvariantCulture) + " ");
+                firstSecond[frames] = implicitEuler.LastIterations;
             }
 
             frames++;
@@ -321,6 +322,12 @@ internal static class Program
         foreach (var value in cloth.System.State)
         {
             checksum += value;
+        }
+
+        if (Array.IndexOf(args, "--per-frame") >= 0)
+        {
+            Console.WriteLine("CG iterations of each frame of the first simulated second: " + string.Join(
+                " ", firstSecond.Take((int)Math.Min(frames, framesPerSecond)).Select(i => i.ToString(CultureInfo.InvariantCulture))));
         }
 
         Console.WriteLine(string.Create(

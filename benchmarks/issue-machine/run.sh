@@ -3,7 +3,9 @@
 # implicit-Euler second (64 x 64 cloth, 60 Hz, tolerance 1e-3) took 0.19 s there with the library of commit THEN
 # (block Jacobi, 24 CG iterations per step). This builds that library (git archive of THEN) and the working tree's,
 # runs Program.cs against each in turn, alternating, and prints each run and the ratio now / then, so that
-# 0.19 s x ratio is the working tree's time on the issue's machine. Needs git history and the .NET SDK only.
+# 0.19 s x ratio is the working tree's time on the issue's machine. Needs git history (a full clone), the .NET SDK,
+# python3, sed and tar. The two small programs are built in a temporary folder: they reference only the libraries,
+# which need no package.
 #   run.sh [pairs] [rounds]      pairs of alternating processes (default 4), timed rounds per process (default 7)
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"

@@ -26,9 +26,9 @@ namespace ParticlePhysics.Integrators;
 /// Cost: one pass over the particles for the prediction (it also saves x0 and v0), one projection pass, one pass for
 /// the velocities, per substep; nothing is allocated once the buffers are sized. With a
 /// <see cref="ParticleWorld.Runner"/> the velocity pass is split into ranges of particles, one hand-off (the
-/// prediction too from 32 768 particles), and the springs' projection into two phases of groups of springs that share
-/// no particle (<see cref="Constraints.SpringProjection"/>), one hand-off each: three per substep on the 64 x 64 and
-/// 128 x 128 cloths, four on larger ones. Every value is then
+/// prediction too from 16 384 particles), and the springs' projection into two phases of groups of springs that share
+/// no particle (<see cref="Constraints.SpringProjection"/>), one hand-off each: three per substep on the 64 x 64
+/// cloth, four on the 128 x 128 one and larger ones. Every value is then
 /// computed by the same operations as on one core, so the result is bit-identical. Nothing else can be folded into
 /// those hand-offs without the integrator seeing forces or constraints: between the velocity pass and the next
 /// prediction the world computes the unprojected accelerations (forces of the new velocities) and solves the

@@ -68,7 +68,8 @@ public class MultigridTests
     [Fact]
     public void On_a_runner_it_gives_the_bits_of_one_thread_whatever_the_scheduling()
     {
-        // 64 x 64: the springs, the vector passes and the first coarse level (1024 aggregates) all run in parallel.
+        // 64 x 64: the springs, the vector passes and the first two coarse levels (1024 and 256 aggregates) all run in
+        // parallel.
         var serial = Cloth(64);
         StateMetrics.Run(serial, new ImplicitEuler { Tolerance = 1e-6 }, Frame, 12);
         using var two = new WorkerThreadRunner(2);
