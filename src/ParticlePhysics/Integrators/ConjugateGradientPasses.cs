@@ -26,9 +26,15 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     private const int JacobiPass = 6;
     private const int InvertBlocksPass = 7;
     private const int EndStatePass = 8;
+    private const int WarmStartGramPass = 9;
+    private const int SolutionProductPass = 10;
+
+    // The six sums of WarmStartGram, per chunk: u1 . q1, u1 . q2, u2 . q1, u2 . q2, u1 . b, u2 . b.
+    private const int GramSums = 6;
 
     private readonly double[] _partial = new double[AggregationMultigrid.Chunks];
     private readonly double[] _secondPartial = new double[AggregationMultigrid.Chunks];
+    private readonly double[] _gramPartial = new double[GramSums * AggregationMultigrid.Chunks];
     private double[] _masses = Array.Empty<double>();
     private double[] _inverseMasses = Array.Empty<double>();
     private IParallelRunner? _runner;
@@ -145,10 +151,10 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     }
 
     /// <summary>
-    /// dv = 2 last - previous (or last alone when <paramref name="previous"/> is null) on the free particles, 0 on
-    /// pinned ones: the warm start, the linear extrapolation of the last two steps' dv.
+    /// dv = c1 last + c2 previous (or c1 last when <paramref name="previous"/> is null) on the free particles, 0 on
+    /// pinned ones: the warm start from the last two steps' dv (c1 = 2, c2 = -1 is their linear extrapolation).
     /// </summary>
-    public void WarmStart(double[] last, double[]? previous)
+    public void WarmStart(double[] last, double[]? previous, double c1, double c2)
     {
         CheckLength(last);
         if (previous is not null)
@@ -160,7 +166,66 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         {
             _a = l;
             _b = q;
+            _scalar = c1;
+            _secondScalar = c2;
             _ = Run(WarmStartPass);
+        }
+    }
+
+    /// <summary>
+    /// The sums that choose the warm start in the plane of the last two steps' dv, u1 = last and u2 = previous, from
+    /// their products q1 ~ A u1 and q2 ~ A u2 (each step's b - r at its end), over the free particles: u1 . q1,
+    /// u1 . q2, u2 . q1, u2 . q2, u1 . b and u2 . b, each summed in chunk order (the u2 sums are 0 without a previous
+    /// step). Needs b.
+    /// </summary>
+    public (double U1Q1, double U1Q2, double U2Q1, double U2Q2, double U1B, double U2B) WarmStartGram(
+        double[] last, double[] lastProduct, double[]? previous, double[]? previousProduct)
+    {
+        CheckLength(last);
+        CheckLength(lastProduct);
+        if ((previous is null) != (previousProduct is null))
+        {
+            throw new ArgumentException("The previous step's dv and its product come together.");
+        }
+
+        if (previous is not null)
+        {
+            CheckLength(previous);
+            CheckLength(previousProduct!);
+        }
+
+        fixed (double* u1 = last, q1 = lastProduct, u2 = previous, q2 = previousProduct)
+        {
+            _a = u1;
+            _b = u2;
+            _c = q1;
+            _d = q2;
+            _ = Run(WarmStartGramPass);
+        }
+
+        double u1q1 = 0, u1q2 = 0, u2q1 = 0, u2q2 = 0, u1b = 0, u2b = 0;
+        for (var c = 0; c < AggregationMultigrid.Chunks; c++)
+        {
+            var o = GramSums * c;
+            u1q1 += _gramPartial[o];
+            u1q2 += _gramPartial[o + 1];
+            u2q1 += _gramPartial[o + 2];
+            u2q2 += _gramPartial[o + 3];
+            u1b += _gramPartial[o + 4];
+            u2b += _gramPartial[o + 5];
+        }
+
+        return (u1q1, u1q2, u2q1, u2q2, u1b, u2b);
+    }
+
+    /// <summary>q = b - r on the free particles, 0 on pinned ones: A dv for the solution just found, up to the solve's residual.</summary>
+    public void SolutionProduct(double[] product)
+    {
+        CheckLength(product);
+        fixed (double* q = product)
+        {
+            _a = q;
+            _ = Run(SolutionProductPass);
         }
     }
 
@@ -255,17 +320,60 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                     }
                     else if (_b is null)
                     {
-                        dv[0] = last[0];
-                        dv[1] = last[1];
-                        dv[2] = last[2];
+                        dv[0] = _scalar * last[0];
+                        dv[1] = _scalar * last[1];
+                        dv[2] = _scalar * last[2];
                     }
                     else
                     {
                         var previous = _b + o;
-                        dv[0] = (2.0 * last[0]) - previous[0];
-                        dv[1] = (2.0 * last[1]) - previous[1];
-                        dv[2] = (2.0 * last[2]) - previous[2];
+                        dv[0] = (_scalar * last[0]) + (_secondScalar * previous[0]);
+                        dv[1] = (_scalar * last[1]) + (_secondScalar * previous[1]);
+                        dv[2] = (_scalar * last[2]) + (_secondScalar * previous[2]);
                     }
+                }
+
+                break;
+            case WarmStartGramPass:
+                {
+                    double u1q1 = 0, u1q2 = 0, u2q1 = 0, u2q2 = 0, u1b = 0, u2b = 0;
+                    for (var i = begin; i < end; i++)
+                    {
+                        if (_pInverseMasses[i] == 0.0)
+                        {
+                            continue;
+                        }
+
+                        for (var k = 3 * i; k < (3 * i) + 3; k++)
+                        {
+                            double a1 = _a[k], c1 = _c[k], bk = _pB[k];
+                            u1q1 += a1 * c1;
+                            u1b += a1 * bk;
+                            if (_b is not null)
+                            {
+                                double a2 = _b[k], c2 = _d[k];
+                                u1q2 += a1 * c2;
+                                u2q1 += a2 * c1;
+                                u2q2 += a2 * c2;
+                                u2b += a2 * bk;
+                            }
+                        }
+                    }
+
+                    var g = GramSums * chunk;
+                    _gramPartial[g] = u1q1;
+                    _gramPartial[g + 1] = u1q2;
+                    _gramPartial[g + 2] = u2q1;
+                    _gramPartial[g + 3] = u2q2;
+                    _gramPartial[g + 4] = u1b;
+                    _gramPartial[g + 5] = u2b;
+                    break;
+                }
+
+            case SolutionProductPass:
+                for (var k = 3 * begin; k < 3 * end; k++)
+                {
+                    _a[k] = _pInverseMasses[k / 3] == 0.0 ? 0.0 : _pB[k] - _pR[k];
                 }
 
                 break;

@@ -48,9 +48,10 @@ public sealed class SimulationSnapshot
 
     /// <summary>
     /// The largest integrator state, in doubles, that the format accepts for <paramref name="particleCount"/>
-    /// particles: 1024 plus 6 per particle (an implicit integrator's warm start is a vector over the particles).
+    /// particles: 1024 plus 12 per particle (implicit Euler's warm start is up to four vectors over the particles: the
+    /// last two steps' velocity changes and their products; it was 6 per particle before the products were kept).
     /// </summary>
-    public static int MaxIntegratorStateLength(int particleCount) => 1024 + (6 * Math.Max(0, particleCount));
+    public static int MaxIntegratorStateLength(int particleCount) => 1024 + (12 * Math.Max(0, particleCount));
 
     /// <summary>The largest integrator name, in UTF-8 bytes, that the binary format accepts.</summary>
     public const int MaxIntegratorNameLength = 256;

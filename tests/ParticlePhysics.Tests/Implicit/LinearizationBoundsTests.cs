@@ -175,7 +175,11 @@ public class LinearizationBoundsTests
         Assert.Throws<ArgumentException>(() => passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(35), masses, masses, null));
         passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(36), masses, masses, null);
         Assert.Throws<ArgumentException>(() => passes.RightHandSide(V(3), 0.1));
-        Assert.Throws<ArgumentException>(() => passes.WarmStart(V(12), V(9)));
+        Assert.Throws<ArgumentException>(() => passes.WarmStart(V(12), V(9), 2.0, -1.0));
+        Assert.Throws<ArgumentException>(() => passes.WarmStartGram(V(12), V(9), null, null));
+        Assert.Throws<ArgumentException>(() => passes.WarmStartGram(V(12), V(12), V(12), null));
+        Assert.Throws<ArgumentException>(() => passes.WarmStartGram(V(12), V(12), V(12), V(11)));
+        Assert.Throws<ArgumentException>(() => passes.SolutionProduct(V(11)));
         Assert.Throws<ArgumentException>(() => passes.EndState(V(12), V(12), V(12), V(11), 0.1));
         Assert.Equal(0.0, passes.RightHandSide(V(12), 0.1)); // bound right, a pass runs: b = 0, b . b = 0
 

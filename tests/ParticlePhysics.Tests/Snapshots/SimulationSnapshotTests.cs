@@ -1,8 +1,10 @@
 using System;
 using System.IO;
+using System.Linq;
 using System.Text;
 using ParticlePhysics.Cloth;
 using ParticlePhysics.Integrators;
+using ParticlePhysics.Scenarios;
 using ParticlePhysics.Snapshots;
 using ParticlePhysics.Tests.Support;
 
@@ -63,6 +65,55 @@ public class SimulationSnapshotTests
         StateMetrics.Run(system, implicitEuler, 1.0 / 60, 1);
         Assert.Equal(1 + (2 * system.CoordinateCount), implicitEuler.StateLength); // and the one before
         Assert.Throws<ArgumentException>("source", () => implicitEuler.ReadState(new double[] { 2, 1, 2, 3 }));
+    }
+
+    [Fact]
+    public void Under_the_multigrid_the_warm_starts_products_are_part_of_the_state_and_the_older_format_still_reads()
+    {
+        // The 16 x 16 cloth: 256 particles, so implicit Euler's multigrid preconditioner, whose warm start keeps each
+        // step's product A dv beside its dv: the header k + 3 p counts both.
+        var n = new ClothScenario { Resolution = 1.0 / 15 }.Build().CoordinateCount;
+        var original = new ClothScenario { Resolution = 1.0 / 15 }.Build();
+        var implicitEuler = new ImplicitEuler { Tolerance = 1e-3 };
+        StateMetrics.Run(original, implicitEuler, 1.0 / 60, 1);
+        Assert.Equal(1 + (2 * n), implicitEuler.StateLength);
+        Assert.Equal(4.0, Written(implicitEuler)[0]); // one step known, with its product
+        StateMetrics.Run(original, implicitEuler, 1.0 / 60, 4);
+        Assert.Equal(1 + (4 * n), implicitEuler.StateLength);
+        var state = Written(implicitEuler);
+        Assert.Equal(8.0, state[0]); // two steps, both products
+        Assert.True(SimulationSnapshot.MaxIntegratorStateLength(n / 3) >= state.Length);
+
+        // Restored from the full state, a run continues bit for bit; from the older format (the two dv alone) it
+        // starts from their extrapolation, then keeps products again.
+        var atSave = original.State.ToArray();
+        var time = original.Time;
+        StateMetrics.Run(original, implicitEuler, 1.0 / 60, 3);
+        var restored = new ClothScenario { Resolution = 1.0 / 15 }.Build();
+        restored.SetState(atSave);
+        restored.Time = time;
+        var fresh = new ImplicitEuler { Tolerance = 1e-3 };
+        fresh.ReadState(state);
+        StateMetrics.Run(restored, fresh, 1.0 / 60, 3);
+        Assert.Equal(StateMetrics.BitHash(original.State), StateMetrics.BitHash(restored.State));
+
+        var older = new ImplicitEuler { Tolerance = 1e-3 };
+        older.ReadState(state.AsSpan(0, 1 + (2 * n)).ToArray().Select((v, i) => i == 0 ? 2.0 : v).ToArray());
+        Assert.Equal(1 + (2 * n), older.StateLength);
+        restored.SetState(atSave);
+        restored.Time = time;
+        StateMetrics.Run(restored, older, 1.0 / 60, 1);
+        Assert.Equal(5.0, Written(older)[0]); // two steps known, the last one's product
+        StateMetrics.Run(restored, older, 1.0 / 60, 1);
+        Assert.Equal(8.0, Written(older)[0]);
+
+        // Headers that no state has: k + 3 p with p > k, or not a whole number of vectors.
+        foreach (var header in new[] { 3.0, 6.0, 7.0, 9.0, -1.0 })
+        {
+            Assert.Throws<ArgumentException>("source", () => fresh.ReadState(new[] { header }.Concat(new double[2 * n]).ToArray()));
+        }
+
+        Assert.Throws<ArgumentException>("source", () => fresh.ReadState(new[] { 8.0 }.Concat(new double[(4 * n) - 3]).ToArray()));
     }
 
     [Fact]
@@ -296,6 +347,13 @@ public class SimulationSnapshotTests
         var bytes = Serialized(system, null);
         var masses = 28 + (48 * system.Count);
         AssertInvalid(WithCrc(bytes, b => BitConverter.TryWriteBytes(b.AsSpan(masses + 8), 1e-320)), "Particle 1's mass");
+    }
+
+    private static double[] Written(ImplicitEuler integrator)
+    {
+        var state = new double[integrator.StateLength];
+        integrator.WriteState(state);
+        return state;
     }
 
     private static ParticleWorld ClothSystem() => new ClothBuilder { Rows = 4, Columns = 5, Spacing = 0.1 }.Build().System;
