@@ -495,10 +495,21 @@ namespace ParticlePhysics.RuntimeComparison
         private static void Print(string name, ulong hash) =>
             Console.WriteLine("hash " + name + " " + hash.ToString("x16", CultureInfo.InvariantCulture));
 
-        // "count <case> cg-iterations-per-step <mean>": deterministic, the same on both runtimes.
-        private static void PrintIterations(string name, long iterations, int steps) =>
+        // "count <case> cg-iterations-per-step <mean> (<iterations> in <steps> steps)": deterministic, the same on both
+        // runtimes. The mean is rounded to a tenth in integers, half up: the runtimes format a double that falls on a
+        // half differently (522 / 120 = 4.35 prints as 4.4 on Mono and 4.3 on CoreCLR), the integers do not.
+        private static void PrintIterations(string name, long iterations, int steps)
+        {
+            var tenths = ((iterations * 10) + (steps / 2)) / steps;
             Console.WriteLine(string.Format(
-                CultureInfo.InvariantCulture, "count {0} cg-iterations-per-step {1:F1}", name, (double)iterations / steps));
+                CultureInfo.InvariantCulture,
+                "count {0} cg-iterations-per-step {1}.{2} ({3} in {4} steps)",
+                name,
+                tenths / 10,
+                tenths % 10,
+                iterations,
+                steps));
+        }
 
         // "time <case> <wall> <cpu> <unit>"; cpu is -1 where the thread's CPU time cannot be read.
         private static void PrintTime(string name, double wall, double cpu, string unit) =>
