@@ -336,8 +336,9 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         // 1/2 x.A x - b.x in that plane as well as those products tell, from the Galerkin conditions
         // u_j . (b - c1 q1 - c2 q2) = 0 (one pass for the sums, a 2 x 2 solve; the extrapolation if it is singular).
         // Measured (docs/benchmarks.md, "The warm start"): 7.10 iterations per frame instead of 7.55 on the 64 x 64
-        // cloth's first second at 1e-3, fewer in 7 of 8 cases and 3 % fewer in all; under block Jacobi it took 15 %
-        // more (the energy it removes is in the stiff components, which block Jacobi damps anyway), hence not there.
+        // cloth's first second at 1e-3, fewer in 9 of 10 cases and 3 % fewer in all (not while a large cloth settles:
+        // 5 % more there, its products being older than its motion); under block Jacobi it took 15 % more (the energy
+        // it removes is in the stiff components, which block Jacobi damps anyway), hence not there.
         // Pinned components are always 0. The committed warm start is only read here: a step that fails leaves it as
         // it was (CommitStep moves dv and its product in).
         var known = WarmStart && _dvLength == n ? _knownSteps : 0;
