@@ -29,12 +29,11 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     private const int WarmStartGramPass = 9;
     private const int SolutionProductPass = 10;
 
-    // The six sums of WarmStartGram, per chunk: u1 . q1, u1 . q2, u2 . q1, u2 . q2, u1 . b, u2 . b.
-    private const int GramSums = 6;
 
     private readonly double[] _partial = new double[AggregationMultigrid.Chunks];
     private readonly double[] _secondPartial = new double[AggregationMultigrid.Chunks];
-    private readonly double[] _gramPartial = new double[GramSums * AggregationMultigrid.Chunks];
+    // The six sums of WarmStartGram, each per chunk: u1 . q1, u1 . q2, u2 . q1, u2 . q2, u1 . b, u2 . b.
+    private readonly double[][] _gramPartials = NewPartials(6);
     private double[] _masses = Array.Empty<double>();
     private double[] _inverseMasses = Array.Empty<double>();
     private IParallelRunner? _runner;
@@ -203,19 +202,8 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
             _ = Run(WarmStartGramPass);
         }
 
-        double u1q1 = 0, u1q2 = 0, u2q1 = 0, u2q2 = 0, u1b = 0, u2b = 0;
-        for (var c = 0; c < AggregationMultigrid.Chunks; c++)
-        {
-            var o = GramSums * c;
-            u1q1 += _gramPartial[o];
-            u1q2 += _gramPartial[o + 1];
-            u2q1 += _gramPartial[o + 2];
-            u2q2 += _gramPartial[o + 3];
-            u1b += _gramPartial[o + 4];
-            u2b += _gramPartial[o + 5];
-        }
-
-        return (u1q1, u1q2, u2q1, u2q2, u1b, u2b);
+        var g = _gramPartials;
+        return (Chunk.Sum(g[0]), Chunk.Sum(g[1]), Chunk.Sum(g[2]), Chunk.Sum(g[3]), Chunk.Sum(g[4]), Chunk.Sum(g[5]));
     }
 
     /// <summary>q = b - r on the free particles, 0 on pinned ones: A dv for the solution just found, up to the solve's residual.</summary>
@@ -337,6 +325,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
             case WarmStartGramPass:
                 {
                     double u1q1 = 0, u1q2 = 0, u2q1 = 0, u2q2 = 0, u1b = 0, u2b = 0;
+                    var two = _b is not null;
                     for (var i = begin; i < end; i++)
                     {
                         if (_pInverseMasses[i] == 0.0)
@@ -349,7 +338,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                             double a1 = _a[k], c1 = _c[k], bk = _pB[k];
                             u1q1 += a1 * c1;
                             u1b += a1 * bk;
-                            if (_b is not null)
+                            if (two)
                             {
                                 double a2 = _b[k], c2 = _d[k];
                                 u1q2 += a1 * c2;
@@ -360,13 +349,8 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                         }
                     }
 
-                    var g = GramSums * chunk;
-                    _gramPartial[g] = u1q1;
-                    _gramPartial[g + 1] = u1q2;
-                    _gramPartial[g + 2] = u2q1;
-                    _gramPartial[g + 3] = u2q2;
-                    _gramPartial[g + 4] = u1b;
-                    _gramPartial[g + 5] = u2b;
+                    var g = _gramPartials;
+                    (g[0][chunk], g[1][chunk], g[2][chunk], g[3][chunk], g[4][chunk], g[5][chunk]) = (u1q1, u1q2, u2q1, u2q2, u1b, u2b);
                     break;
                 }
 
@@ -521,6 +505,18 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 
             blocks[0] = blocks[4] = blocks[8] = 1.0 / m;
         }
+    }
+
+    /// <summary><paramref name="count"/> arrays of one partial sum per chunk.</summary>
+    private static double[][] NewPartials(int count)
+    {
+        var partials = new double[count][];
+        for (var j = 0; j < count; j++)
+        {
+            partials[j] = new double[AggregationMultigrid.Chunks];
+        }
+
+        return partials;
     }
 
     private double Run(int operation)

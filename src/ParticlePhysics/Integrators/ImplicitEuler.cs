@@ -154,25 +154,9 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         }
 
         destination[0] = _knownSteps + (3 * _knownProducts);
-        var slot = 0;
-        if (_knownSteps >= 1)
+        for (var v = 0; v < _knownSteps + _knownProducts; v++)
         {
-            _lastDv.AsSpan(0, _dvLength).CopyTo(destination.Slice(1 + (slot++ * _dvLength)));
-        }
-
-        if (_knownSteps == 2)
-        {
-            _previousDv.AsSpan(0, _dvLength).CopyTo(destination.Slice(1 + (slot++ * _dvLength)));
-        }
-
-        if (_knownProducts >= 1)
-        {
-            _lastProduct.AsSpan(0, _dvLength).CopyTo(destination.Slice(1 + (slot++ * _dvLength)));
-        }
-
-        if (_knownProducts == 2)
-        {
-            _previousProduct.AsSpan(0, _dvLength).CopyTo(destination.Slice(1 + (slot * _dvLength)));
+            StateVector(v).AsSpan(0, _dvLength).CopyTo(destination.Slice(1 + (v * _dvLength)));
         }
     }
 
@@ -200,30 +184,26 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         _knownSteps = known;
         _knownProducts = products;
         _dvLength = vectorCount == 0 ? -1 : (source.Length - 1) / vectorCount;
-        var slot = 0;
-        if (_knownSteps >= 1)
+        for (var v = 0; v < vectorCount; v++)
         {
-            _lastDv = StepChecks.Sized(_lastDv, _dvLength);
-            source.Slice(1 + (slot++ * _dvLength), _dvLength).CopyTo(_lastDv);
+            ref var vector = ref StateVector(v);
+            vector = StepChecks.Sized(vector, _dvLength);
+            source.Slice(1 + (v * _dvLength), _dvLength).CopyTo(vector);
+        }
+    }
+
+    /// <summary>
+    /// Vector <paramref name="v"/> of the state, in its order: the known steps' dv (the last, then the one before),
+    /// then the known products (the same order).
+    /// </summary>
+    private ref double[]? StateVector(int v)
+    {
+        if (v < _knownSteps)
+        {
+            return ref v == 0 ? ref _lastDv : ref _previousDv;
         }
 
-        if (_knownSteps == 2)
-        {
-            _previousDv = StepChecks.Sized(_previousDv, _dvLength);
-            source.Slice(1 + (slot++ * _dvLength), _dvLength).CopyTo(_previousDv);
-        }
-
-        if (_knownProducts >= 1)
-        {
-            _lastProduct = StepChecks.Sized(_lastProduct, _dvLength);
-            source.Slice(1 + (slot++ * _dvLength), _dvLength).CopyTo(_lastProduct);
-        }
-
-        if (_knownProducts == 2)
-        {
-            _previousProduct = StepChecks.Sized(_previousProduct, _dvLength);
-            source.Slice(1 + (slot * _dvLength), _dvLength).CopyTo(_previousProduct);
-        }
+        return ref v == _knownSteps ? ref _lastProduct : ref _previousProduct;
     }
 
     /// <inheritdoc />
@@ -343,7 +323,9 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         // it was (CommitStep moves dv and its product in).
         var known = WarmStart && _dvLength == n ? _knownSteps : 0;
         var knownProducts = known > 0 ? Math.Min(_knownProducts, known) : 0;
-        var keepProduct = multigrid; // (the start in the plane is the multigrid's: only its steps keep their products)
+        // The start in the plane is the multigrid's, so only its steps keep their products; taken before the solve, which
+        // may fall back to block Jacobi on the way.
+        var keepProduct = multigrid;
         double rr;
         if (known > 0)
         {
