@@ -65,6 +65,20 @@ internal static unsafe class Blocks3
         target[8] += source[8];
     }
 
+    /// <summary>target += source^T (9 values).</summary>
+    public static void AddTransposed(double* target, double* source)
+    {
+        target[0] += source[0];
+        target[1] += source[3];
+        target[2] += source[6];
+        target[3] += source[1];
+        target[4] += source[4];
+        target[5] += source[7];
+        target[6] += source[2];
+        target[7] += source[5];
+        target[8] += source[8];
+    }
+
     /// <summary>y = M x for one block (y may not be x).</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static void Multiply(double* m, double* x, double* y)
