@@ -126,7 +126,7 @@ internal sealed unsafe class AggregationMultigrid
     public double BeginApply(ConjugateGradientPasses cg, double alpha, double beta, bool update, IParallelRunner? runner)
     {
         var first = CheckBound(cg);
-        fixed (double* r = cg.R, z = cg.Z, dv = cg.Dv, p = cg.P, s = cg.S, w = cg.W, inv = cg.Blocks, masses = cg.InverseMasses)
+        fixed (double* r = cg.R, z = cg.Z, dv = cg.Dv, p = cg.P, s = cg.S, w = cg.W, inv = cg.Inverses, masses = cg.InverseMasses)
         fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members)
         fixed (double* coarseB = first.B, coarseX = first.X, coarseInverse = first.Inverse)
         {
@@ -150,7 +150,7 @@ internal sealed unsafe class AggregationMultigrid
         var first = CheckBound(cg);
         Cycle(0, runner);
         var smoothed = _levels.Length > 1;
-        fixed (double* r = cg.R, z = cg.Z, dv = cg.Dv, p = cg.P, s = cg.S, w = cg.W, inv = cg.Blocks, masses = cg.InverseMasses)
+        fixed (double* r = cg.R, z = cg.Z, dv = cg.Dv, p = cg.P, s = cg.S, w = cg.W, inv = cg.Inverses, masses = cg.InverseMasses)
         fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members)
         fixed (double* coarseB = first.B, coarseX = first.X, coarseInverse = first.Inverse, smoothedX = first.Smoothed)
         {
@@ -177,7 +177,7 @@ internal sealed unsafe class AggregationMultigrid
         var n = 3L * _particles;
         if (_levels.Length == 0 || cg.Particles != _particles || cg.InverseMasses.Length < _particles || cg.R.Length < n
             || cg.Z.Length < n || cg.Dv.Length < n || cg.P.Length < n || cg.S.Length < n || cg.W.Length < n
-            || cg.Blocks.Length < 3 * n)
+            || cg.Inverses.Length < 2 * n)
         {
             throw new InvalidOperationException(
                 $"The multigrid was set up for {_particles} particles; it was applied to {cg.Particles}, or to vectors shorter than theirs.");
@@ -552,7 +552,7 @@ internal sealed unsafe class AggregationMultigrid
                     for (var k = _memberStart[a]; k < _memberStart[a + 1]; k++)
                     {
                         var i = _members[k];
-                        double* ri = _r + (3L * i), zi = _z + (3L * i), m = _inverse + (9L * i);
+                        double* ri = _r + (3L * i), zi = _z + (3L * i), m = _inverse + (6L * i);
                         if (_inverseMasses[i] == 0.0)
                         {
                             zi[0] = zi[1] = zi[2] = 0.0;
@@ -560,9 +560,9 @@ internal sealed unsafe class AggregationMultigrid
                         }
 
                         double rx = ri[0], ry = ri[1], rzz = ri[2];
-                        var zx = (m[0] * rx) + (m[1] * ry) + (m[2] * rzz) + x[0];
-                        var zy = (m[3] * rx) + (m[4] * ry) + (m[5] * rzz) + x[1];
-                        var zz = (m[6] * rx) + (m[7] * ry) + (m[8] * rzz) + x[2];
+                        var zx = (m[0] * rx) + (m[1] * ry) + (m[2] * rzz) + x[0]; // D_i^-1 as its upper triangle
+                        var zy = (m[1] * rx) + (m[3] * ry) + (m[4] * rzz) + x[1];
+                        var zz = (m[2] * rx) + (m[4] * ry) + (m[5] * rzz) + x[2];
                         zi[0] = zx;
                         zi[1] = zy;
                         zi[2] = zz;

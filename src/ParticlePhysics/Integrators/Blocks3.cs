@@ -89,6 +89,30 @@ internal static unsafe class Blocks3
         y[2] = (m[6] * x0) + (m[7] * x1) + (m[8] * x2);
     }
 
+    /// <summary>Writes the upper triangle xx, xy, xz, yy, yz, zz of a symmetric row-major block.</summary>
+    public static void PackSymmetric(double* block, double* packed)
+    {
+        packed[0] = block[0];
+        packed[1] = block[1];
+        packed[2] = block[2];
+        packed[3] = block[4];
+        packed[4] = block[5];
+        packed[5] = block[8];
+    }
+
+    /// <summary>
+    /// y = M x for a symmetric block stored as its upper triangle (<see cref="PackSymmetric"/>), with the operations
+    /// of <see cref="Multiply"/> on the full block (y may not be x).
+    /// </summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void MultiplySymmetric(double* m, double* x, double* y)
+    {
+        double x0 = x[0], x1 = x[1], x2 = x[2];
+        y[0] = (m[0] * x0) + (m[1] * x1) + (m[2] * x2);
+        y[1] = (m[1] * x0) + (m[3] * x1) + (m[4] * x2);
+        y[2] = (m[2] * x0) + (m[4] * x1) + (m[5] * x2);
+    }
+
     /// <summary>y_i = M_i x_i for <paramref name="count"/> blocks.</summary>
     public static void MultiplyAll(double* blocks, double* x, double* y, int count)
     {

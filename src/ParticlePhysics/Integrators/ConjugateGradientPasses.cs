@@ -13,8 +13,10 @@ namespace ParticlePhysics.Integrators;
 /// The vectors, 3 values per particle: b the right-hand side, dv the solution, r = b - A dv the residual, z = P r the
 /// preconditioned residual, w = A z, p the search direction and s = A p; jw receives the system's J times a vector,
 /// and the passes that read it leave it 0 for the next product (no pass of its own clears it); the blocks (9 values
-/// per particle) are D_i^-1 = (M_i - J_ii)^-1 once <see cref="InvertBlocks"/> has run. A pinned particle's components
-/// are 0 in every vector but dv's warm start (filtered there too).
+/// per particle) are J_ii, and <see cref="InvertBlocks"/> writes D_i^-1 = (M_i - J_ii)^-1 into the inverses, 6 values
+/// per particle: the matrix is symmetric, so its upper triangle xx, xy, xz, yy, yz, zz is all of it, and the passes
+/// that apply it every iteration read two thirds of the bytes. A pinned particle's components are 0 in every vector
+/// but dv's warm start (filtered there too).
 /// </remarks>
 internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 {
@@ -35,6 +37,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     // The six sums of WarmStartGram, each per chunk: u1 . q1, u1 . q2, u2 . q1, u2 . q2, u1 . b, u2 . b.
     private readonly double[][] _gramPartials = NewPartials(6);
     private double[] _masses = Array.Empty<double>();
+    private double[] _inverses = Array.Empty<double>();
     private double[] _inverseMasses = Array.Empty<double>();
     private IParallelRunner? _runner;
     private int _particles;
@@ -56,6 +59,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     private double* _pW;
     private double* _pJw;
     private double* _pBlocks;
+    private double* _pInverses;
     private double* _pMasses;
     private double* _pInverseMasses;
 
@@ -83,8 +87,14 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     /// <summary>The system's J times a vector, which <see cref="Residual"/> and <see cref="MassMinusJacobian"/> read.</summary>
     public double[] JacobianProduct { get; private set; } = Array.Empty<double>();
 
-    /// <summary>The diagonal blocks: J_ii, then D_i^-1 after <see cref="InvertBlocks"/> (9 values per particle).</summary>
+    /// <summary>The diagonal blocks J_ii (9 values per particle, row-major), as the forces added them.</summary>
     public double[] Blocks { get; private set; } = Array.Empty<double>();
+
+    /// <summary>
+    /// D_i^-1 = (M_i - J_ii)^-1 after <see cref="InvertBlocks"/>, 6 values per particle: the upper triangle
+    /// xx, xy, xz, yy, yz, zz of the symmetric block (<see cref="Blocks3.MultiplySymmetric"/> applies it).
+    /// </summary>
+    public double[] Inverses => _inverses;
 
     /// <summary>This step's inverse masses (0 for pinned particles), a copy the passes own.</summary>
     public double[] InverseMasses => _inverseMasses;
@@ -112,6 +122,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         {
             _masses = new double[masses.Length];
             _inverseMasses = new double[masses.Length];
+            _inverses = new double[6 * masses.Length];
         }
 
         masses.CopyTo(_masses);
@@ -240,8 +251,8 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     public double Jacobi() => Run(JacobiPass);
 
     /// <summary>
-    /// Turns each block J_ii into D_i^-1 = (M_i - J_ii)^-1 in place; a pinned particle gets the zero block (filtered), a
-    /// degenerate block plain Jacobi on the mass, 1 / m_i.
+    /// Writes D_i^-1 = (M_i - J_ii)^-1 into <see cref="Inverses"/>; a pinned particle gets the zero block (filtered), a
+    /// degenerate block plain Jacobi on the mass, 1 / m_i. <see cref="Blocks"/> keeps J_ii.
     /// </summary>
     public void InvertBlocks() => _ = Run(InvertBlocksPass);
 
@@ -410,7 +421,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                 for (var i = begin; i < end; i++)
                 {
                     var o = 3 * i;
-                    double* m = _pBlocks + (9 * i);
+                    double* m = _pInverses + (6 * i);
                     var r0 = UpdateComponent(_pZ, _pW, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o);
                     var r1 = UpdateComponent(_pZ, _pW, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o + 1);
                     var r2 = UpdateComponent(_pZ, _pW, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o + 2);
@@ -418,7 +429,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                     sum += r1 * r1;
                     sum += r2 * r2;
                     var z = _pZ + o;
-                    Blocks3.Multiply(m, _pR + o, z); // z = D^-1 r with the r just written
+                    Blocks3.MultiplySymmetric(m, _pR + o, z); // z = D^-1 r with the r just written
                     second += (r0 * z[0]) + (r1 * z[1]) + (r2 * z[2]);
                 }
 
@@ -427,7 +438,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                 for (var i = begin; i < end; i++)
                 {
                     double* r = _pR + (3 * i), z = _pZ + (3 * i);
-                    Blocks3.Multiply(_pBlocks + (9 * i), r, z);
+                    Blocks3.MultiplySymmetric(_pInverses + (6 * i), r, z);
                     sum += (r[0] * z[0]) + (r[1] * z[1]) + (r[2] * z[2]);
                 }
 
@@ -472,39 +483,44 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         return rk;
     }
 
-    /// <summary>D_i^-1 = (M_i - J_ii)^-1 in place for particle i (cofactors, <see cref="Blocks3.Invert(double*, double*)"/>).</summary>
+    /// <summary>
+    /// D_i^-1 = (M_i - J_ii)^-1 for particle i, by cofactors (<see cref="Blocks3.Invert(double*, double*)"/>), stored
+    /// as its upper triangle. The cofactors of a symmetric block are symmetric to the last bit (each pair is the same
+    /// two products), so the upper triangle is the inverse exactly as the full block held it.
+    /// </summary>
     private void InvertBlock(int i)
     {
-        var blocks = _pBlocks + (9L * i);
+        var inverse = _pInverses + (6L * i);
         if (_pInverseMasses[i] == 0.0)
         {
-            for (var k = 0; k < 9; k++)
+            for (var k = 0; k < 6; k++)
             {
-                blocks[k] = 0.0;
+                inverse[k] = 0.0;
             }
 
             return;
         }
 
         var m = _pMasses[i];
+        var j = _pBlocks + (9L * i);
+        var block = stackalloc double[9];
         for (var k = 0; k < 9; k++)
         {
-            blocks[k] = -blocks[k];
+            block[k] = -j[k];
         }
 
-        blocks[0] += m;
-        blocks[4] += m;
-        blocks[8] += m;
-        if (!Blocks3.Invert(blocks, blocks))
+        block[0] += m;
+        block[4] += m;
+        block[8] += m;
+        if (!Blocks3.Invert(block, block))
         {
             // Degenerate block: fall back to plain Jacobi on the mass alone.
-            for (var k = 0; k < 9; k++)
-            {
-                blocks[k] = 0.0;
-            }
-
-            blocks[0] = blocks[4] = blocks[8] = 1.0 / m;
+            inverse[0] = inverse[3] = inverse[5] = 1.0 / m;
+            inverse[1] = inverse[2] = inverse[4] = 0.0;
+            return;
         }
+
+        Blocks3.PackSymmetric(block, inverse);
     }
 
     /// <summary><paramref name="count"/> arrays of one partial sum per chunk.</summary>
@@ -523,8 +539,9 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     {
         _operation = operation;
         fixed (double* b = B, dv = Dv, r = R, p = P, s = S, z = Z, w = W, jw = JacobianProduct, blocks = Blocks)
-        fixed (double* masses = _masses, inverseMasses = _inverseMasses)
+        fixed (double* masses = _masses, inverseMasses = _inverseMasses, inverses = _inverses)
         {
+            _pInverses = inverses;
             _pB = b;
             _pDv = dv;
             _pR = r;
