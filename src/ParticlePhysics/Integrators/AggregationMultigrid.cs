@@ -126,11 +126,11 @@ internal sealed unsafe class AggregationMultigrid
     public double BeginApply(ConjugateGradientPasses cg, double alpha, double beta, bool update, IParallelRunner? runner)
     {
         var first = CheckBound(cg);
-        fixed (double* r = cg.R, z = cg.Z, dv = cg.Dv, p = cg.P, s = cg.S, w = cg.W, inv = cg.Inverses, masses = cg.InverseMasses)
+        fixed (double* r = cg.R, z = cg.Z, dv = cg.Dv, p = cg.P, s = cg.S, jw = cg.JacobianProduct, inv = cg.Inverses, masses = cg.Masses, inverseMasses = cg.InverseMasses)
         fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members)
         fixed (double* coarseB = first.B, coarseX = first.X, coarseInverse = first.Inverse)
         {
-            _fine.Set(r, z, dv, p, s, w, inv, masses, aggregate, memberStart, members, first.Count);
+            _fine.Set(r, z, dv, p, s, jw, inv, masses, inverseMasses, aggregate, memberStart, members, first.Count);
             _fine.SetCoarse(coarseB, coarseX, coarseInverse, null, smoothed: _levels.Length > 1);
             _fine.Alpha = alpha;
             _fine.Beta = beta;
@@ -150,11 +150,11 @@ internal sealed unsafe class AggregationMultigrid
         var first = CheckBound(cg);
         Cycle(0, runner);
         var smoothed = _levels.Length > 1;
-        fixed (double* r = cg.R, z = cg.Z, dv = cg.Dv, p = cg.P, s = cg.S, w = cg.W, inv = cg.Inverses, masses = cg.InverseMasses)
+        fixed (double* r = cg.R, z = cg.Z, dv = cg.Dv, p = cg.P, s = cg.S, jw = cg.JacobianProduct, inv = cg.Inverses, masses = cg.Masses, inverseMasses = cg.InverseMasses)
         fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members)
         fixed (double* coarseB = first.B, coarseX = first.X, coarseInverse = first.Inverse, smoothedX = first.Smoothed)
         {
-            _fine.Set(r, z, dv, p, s, w, inv, masses, aggregate, memberStart, members, first.Count);
+            _fine.Set(r, z, dv, p, s, jw, inv, masses, inverseMasses, aggregate, memberStart, members, first.Count);
             _fine.SetCoarse(coarseB, coarseX, coarseInverse, smoothed ? smoothedX : null, smoothed);
             _fine.Operation = FinePasses.Prolong;
             _fine.Level = smoothed ? first : null;
@@ -176,7 +176,7 @@ internal sealed unsafe class AggregationMultigrid
         // The fine passes run their pointers over the particles of the hierarchy: every array must cover them.
         var n = 3L * _particles;
         if (_levels.Length == 0 || cg.Particles != _particles || cg.InverseMasses.Length < _particles || cg.R.Length < n
-            || cg.Z.Length < n || cg.Dv.Length < n || cg.P.Length < n || cg.S.Length < n || cg.W.Length < n
+            || cg.Z.Length < n || cg.Dv.Length < n || cg.P.Length < n || cg.S.Length < n || cg.JacobianProduct.Length < n || cg.Masses.Length < _particles
             || cg.Inverses.Length < 2 * n)
         {
             throw new InvalidOperationException(
@@ -476,7 +476,8 @@ internal sealed unsafe class AggregationMultigrid
         private double* _dv;
         private double* _p;
         private double* _s;
-        private double* _w;
+        private double* _jw;
+        private double* _masses;
         private double* _inverse;
         private double* _inverseMasses;
         private double* _coarseB;
@@ -499,15 +500,16 @@ internal sealed unsafe class AggregationMultigrid
         public Level? Level { get; set; }
 
         public void Set(
-            double* r, double* z, double* dv, double* p, double* s, double* w, double* inverse, double* inverseMasses,
-            int* aggregate, int* memberStart, int* members, int aggregates)
+            double* r, double* z, double* dv, double* p, double* s, double* jw, double* inverse, double* masses,
+            double* inverseMasses, int* aggregate, int* memberStart, int* members, int aggregates)
         {
             _r = r;
             _z = z;
             _dv = dv;
             _p = p;
             _s = s;
-            _w = w;
+            _jw = jw;
+            _masses = masses;
             _inverse = inverse;
             _inverseMasses = inverseMasses;
             _aggregate = aggregate;
@@ -587,9 +589,10 @@ internal sealed unsafe class AggregationMultigrid
                     if (update)
                     {
                         var o = 3L * i;
-                        var r0 = ConjugateGradientPasses.UpdateComponent(_z, _w, _p, _s, _dv, _r, Alpha, Beta, o);
-                        var r1 = ConjugateGradientPasses.UpdateComponent(_z, _w, _p, _s, _dv, _r, Alpha, Beta, o + 1);
-                        var r2 = ConjugateGradientPasses.UpdateComponent(_z, _w, _p, _s, _dv, _r, Alpha, Beta, o + 2);
+                        var mass = _masses[i];
+                        var r0 = ConjugateGradientPasses.UpdateComponent(_z, _jw, mass, _p, _s, _dv, _r, Alpha, Beta, o);
+                        var r1 = ConjugateGradientPasses.UpdateComponent(_z, _jw, mass, _p, _s, _dv, _r, Alpha, Beta, o + 1);
+                        var r2 = ConjugateGradientPasses.UpdateComponent(_z, _jw, mass, _p, _s, _dv, _r, Alpha, Beta, o + 2);
                         sum += r0 * r0;
                         sum += r1 * r1;
                         sum += r2 * r2;

@@ -11,8 +11,11 @@ namespace ParticlePhysics.Integrators;
 /// </summary>
 /// <remarks>
 /// The vectors, 3 values per particle: b the right-hand side, dv the solution, r = b - A dv the residual, z = P r the
-/// preconditioned residual, w = A z, p the search direction and s = A p; jw receives the system's J times a vector,
-/// and the passes that read it leave it 0 for the next product (no pass of its own clears it); the blocks (9 values
+/// preconditioned residual, p the search direction and s = A p; jw receives the system's J times a vector, and the
+/// passes that read it leave it 0 for the next product (no pass of its own clears it). w = A z = M z - J z is never
+/// stored: the pass after the product sums z . w from z and jw, and the update, which needs w once, computes it again
+/// from the same two (the same operations, so the same bits as a stored w), which saves writing and re-reading a
+/// vector every iteration; the blocks (9 values
 /// per particle) are J_ii, and <see cref="InvertBlocks"/> writes D_i^-1 = (M_i - J_ii)^-1 into the inverses, 6 values
 /// per particle: the matrix is symmetric, so its upper triangle xx, xy, xz, yy, yz, zz is all of it, and the passes
 /// that apply it every iteration read two thirds of the bytes. A pinned particle's components are 0 in every vector
@@ -56,7 +59,6 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     private double* _pP;
     private double* _pS;
     private double* _pZ;
-    private double* _pW;
     private double* _pJw;
     private double* _pBlocks;
     private double* _pInverses;
@@ -81,10 +83,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     /// <summary>The preconditioned residual z.</summary>
     public double[] Z { get; private set; } = Array.Empty<double>();
 
-    /// <summary>w = A z.</summary>
-    public double[] W { get; private set; } = Array.Empty<double>();
-
-    /// <summary>The system's J times a vector, which <see cref="Residual"/> and <see cref="MassMinusJacobian"/> read.</summary>
+    /// <summary>The system's J times a vector, which <see cref="Residual"/>, <see cref="MassMinusJacobian"/> and the update read.</summary>
     public double[] JacobianProduct { get; private set; } = Array.Empty<double>();
 
     /// <summary>The diagonal blocks J_ii (9 values per particle, row-major), as the forces added them.</summary>
@@ -96,6 +95,9 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     /// </summary>
     public double[] Inverses => _inverses;
 
+    /// <summary>This step's masses, a copy the passes own.</summary>
+    public double[] Masses => _masses;
+
     /// <summary>This step's inverse masses (0 for pinned particles), a copy the passes own.</summary>
     public double[] InverseMasses => _inverseMasses;
 
@@ -106,13 +108,13 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     public double LastJacobiProduct { get; private set; }
 
     public void Bind(
-        double[] b, double[] dv, double[] r, double[] p, double[] s, double[] z, double[] w, double[] jw, double[] blocks,
+        double[] b, double[] dv, double[] r, double[] p, double[] s, double[] z, double[] jw, double[] blocks,
         Span<double> masses, Span<double> inverseMasses, IParallelRunner? runner)
     {
         // Every pass runs its pointers over 3 values per particle (9 for the blocks): checked here, where they are bound.
         var n = 3L * masses.Length;
         if (inverseMasses.Length != masses.Length || b.Length < n || dv.Length < n || r.Length < n || p.Length < n
-            || s.Length < n || z.Length < n || w.Length < n || jw.Length < n || blocks.Length < 3 * n)
+            || s.Length < n || z.Length < n || jw.Length < n || blocks.Length < 3 * n)
         {
             throw new ArgumentException(
                 $"The conjugate gradients' vectors need {n} values each and the blocks {3 * n} for {masses.Length} particles.");
@@ -133,7 +135,6 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         P = p;
         S = s;
         Z = z;
-        W = w;
         JacobianProduct = jw;
         Blocks = blocks;
         _runner = runner;
@@ -231,12 +232,16 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     /// <summary>r = b - (M dv - jw) on the free particles (jw = J dv), 0 on pinned ones, then jw = 0; returns r . r.</summary>
     public double Residual() => Run(ResidualPass);
 
-    /// <summary>w = M z - jw on the free particles (jw = J z), 0 on pinned ones, then jw = 0; returns z . w.</summary>
+    /// <summary>
+    /// z . w with w = M z - jw on the free particles (jw = J z), jw = 0 on the pinned ones (w is 0 there); the free
+    /// particles' jw is left for the update, which computes w from it again and clears it.
+    /// </summary>
     public double MassMinusJacobian() => Run(MassMinusJacobianPass);
 
     /// <summary>
-    /// One step of the iteration and, for block Jacobi, its preconditioner: p = z + beta p, s = w + beta s,
-    /// dv += alpha p, r -= alpha s, then z = D^-1 r. Returns r . r; r . z is left in <see cref="LastJacobiProduct"/>.
+    /// One step of the iteration and, for block Jacobi, its preconditioner: p = z + beta p, s = w + beta s (w = M z - jw,
+    /// then jw = 0), dv += alpha p, r -= alpha s, then z = D^-1 r. Returns r . r; r . z is left in
+    /// <see cref="LastJacobiProduct"/>.
     /// </summary>
     public double Update(double alpha, double beta)
     {
@@ -399,20 +404,15 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                 for (var i = begin; i < end; i++)
                 {
                     var o = 3 * i;
-                    double* z = _pZ + o, w = _pW + o, jw = _pJw + o;
+                    double* z = _pZ + o, jw = _pJw + o;
                     if (_pInverseMasses[i] == 0.0)
                     {
-                        w[0] = w[1] = w[2] = 0.0;
-                        jw[0] = jw[1] = jw[2] = 0.0;
+                        jw[0] = jw[1] = jw[2] = 0.0; // (z is 0 here, so the update's w = M z - jw is 0)
                         continue;
                     }
 
                     var m = _pMasses[i];
                     double wx = (m * z[0]) - jw[0], wy = (m * z[1]) - jw[1], wz = (m * z[2]) - jw[2];
-                    jw[0] = jw[1] = jw[2] = 0.0;
-                    w[0] = wx;
-                    w[1] = wy;
-                    w[2] = wz;
                     sum += (z[0] * wx) + (z[1] * wy) + (z[2] * wz);
                 }
 
@@ -422,9 +422,10 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                 {
                     var o = 3 * i;
                     double* m = _pInverses + (6 * i);
-                    var r0 = UpdateComponent(_pZ, _pW, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o);
-                    var r1 = UpdateComponent(_pZ, _pW, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o + 1);
-                    var r2 = UpdateComponent(_pZ, _pW, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o + 2);
+                    var mass = _pMasses[i];
+                    var r0 = UpdateComponent(_pZ, _pJw, mass, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o);
+                    var r1 = UpdateComponent(_pZ, _pJw, mass, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o + 1);
+                    var r2 = UpdateComponent(_pZ, _pJw, mass, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o + 2);
                     sum += r0 * r0;
                     sum += r1 * r1;
                     sum += r2 * r2;
@@ -466,16 +467,20 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     }
 
     /// <summary>
-    /// One component k of the iteration's update, p = z + beta p, s = w + beta s, dv += alpha p, r -= alpha s; returns
-    /// the new r. Shared with the multigrid's pass that fuses the update with its restriction.
+    /// One component k of the iteration's update, p = z + beta p, s = w + beta s with w = M z - jw (the value that
+    /// <see cref="MassMinusJacobian"/> summed; jw is then cleared for the next product), dv += alpha p, r -= alpha s;
+    /// returns the new r. Shared with the multigrid's pass that fuses the update with its restriction.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static double UpdateComponent(
-        double* z, double* w, double* p, double* s, double* dv, double* r, double alpha, double beta, long k)
+        double* z, double* jw, double mass, double* p, double* s, double* dv, double* r, double alpha, double beta, long k)
     {
-        var pk = z[k] + (beta * p[k]);
+        var zk = z[k];
+        var wk = (mass * zk) - jw[k];
+        jw[k] = 0.0;
+        var pk = zk + (beta * p[k]);
         p[k] = pk;
-        var sk = w[k] + (beta * s[k]);
+        var sk = wk + (beta * s[k]);
         s[k] = sk;
         dv[k] += alpha * pk;
         var rk = r[k] - (alpha * sk);
@@ -538,7 +543,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     private double Run(int operation)
     {
         _operation = operation;
-        fixed (double* b = B, dv = Dv, r = R, p = P, s = S, z = Z, w = W, jw = JacobianProduct, blocks = Blocks)
+        fixed (double* b = B, dv = Dv, r = R, p = P, s = S, z = Z, jw = JacobianProduct, blocks = Blocks)
         fixed (double* masses = _masses, inverseMasses = _inverseMasses, inverses = _inverses)
         {
             _pInverses = inverses;
@@ -548,7 +553,6 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
             _pP = p;
             _pS = s;
             _pZ = z;
-            _pW = w;
             _pJw = jw;
             _pBlocks = blocks;
             _pMasses = masses;

@@ -54,7 +54,6 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     private double[]? _direction;
     private double[]? _directionProduct;
     private double[]? _preconditioned;
-    private double[]? _preconditionedProduct;
     private double[]? _jacobianProduct;
     private double[]? _blocks;
     private ConjugateGradientPasses? _passes;
@@ -272,7 +271,6 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         var p = _direction = StepChecks.Sized(_direction, n);
         var s = _directionProduct = StepChecks.Sized(_directionProduct, n);
         var z = _preconditioned = StepChecks.Sized(_preconditioned, n);
-        var w = _preconditionedProduct = StepChecks.Sized(_preconditionedProduct, n);
         var jw = _jacobianProduct = StepChecks.Sized(_jacobianProduct, n);
         var blocks = _blocks = StepChecks.Sized(_blocks, 3 * n);
         var masses = system.Masses.ForReading();
@@ -290,7 +288,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         // b = h (f0 + h K v0), filtered; the multigrid's coarse levels from the same linearisation (before the blocks
         // are inverted); block Jacobi P = inverse of the blocks of M - (h D + h^2 K).
         var passes = _passes ??= new ConjugateGradientPasses();
-        passes.Bind(b, dv, r, p, s, z, w, jw, blocks, masses, inverseMasses, runner);
+        passes.Bind(b, dv, r, p, s, z, jw, blocks, masses, inverseMasses, runner);
         var rhsNorm = Math.Sqrt(passes.RightHandSide(f0, h));
         CheckFinite(b, inverseMasses, time, end, "the implicit system's right-hand side h (f + h K v) at particle {0} is {1}: the step is too large for these forces");
         if (!DoubleChecks.IsFinite(rhsNorm))
@@ -354,7 +352,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         //   p = z + beta p, s = w + beta s, dv += alpha p, r -= alpha s
         // (delta - beta gamma / alpha_old is p . A p). The update is one pass over the vectors, fused with the
         // preconditioner's first pass (block Jacobi's z = D^-1 r, or the multigrid's restriction), which halves the
-        // passes over the vectors and the hand-offs to a runner per iteration.
+        // passes over the vectors and the hand-offs to a runner per iteration. w = M z - J z is not stored: delta's pass
+        // reads z and jw = J z, and the update computes w from them again (a vector less written and read back).
         Array.Clear(p, 0, n);
         Array.Clear(s, 0, n);
         var iterations = 0;
@@ -495,13 +494,13 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     }
 
     /// <summary>
-    /// w = (M - J) z on the free particles, 0 on the pinned ones; returns z . w (summed in chunk order), or fails the
-    /// step when it is not finite.
+    /// jw = J z, and z . w with w = (M - J) z on the free particles (0 on the pinned ones), summed in chunk order; fails
+    /// the step when it is not finite. w itself is computed again from z and jw by the update that follows.
     /// </summary>
     private double ApplySystemMatrix(ILinearizableSystem system, ConjugateGradientPasses passes, double time, double end)
     {
-        // jw is 0 here: every pass that reads it (the right-hand side, the residual, the last w = M z - jw) clears it
-        // as it goes, so no separate pass clears it before each product.
+        // jw is 0 here: every pass that reads it last (the right-hand side, the residual, the update that takes
+        // w = M z - jw) clears it as it goes, so no separate pass clears it before each product.
         system.AddJacobianProduct(passes.Z, passes.JacobianProduct);
         var zw = passes.MassMinusJacobian();
         if (!DoubleChecks.IsFinite(zw))

@@ -171,9 +171,10 @@ public class LinearizationBoundsTests
         var passes = new ConjugateGradientPasses();
         var masses = new double[] { 1, 1, 1, 1 };
         double[] V(int n) => new double[n];
-        Assert.Throws<ArgumentException>(() => passes.Bind(V(12), V(12), V(12), V(12), V(12), V(11), V(12), V(12), V(36), masses, masses, null));
-        Assert.Throws<ArgumentException>(() => passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(35), masses, masses, null));
-        passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(36), masses, masses, null);
+        Assert.Throws<ArgumentException>(() => passes.Bind(V(12), V(12), V(12), V(12), V(12), V(11), V(12), V(36), masses, masses, null));
+        Assert.Throws<ArgumentException>(() => passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(11), V(36), masses, masses, null));
+        Assert.Throws<ArgumentException>(() => passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(35), masses, masses, null));
+        passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(36), masses, masses, null);
         Assert.Throws<ArgumentException>(() => passes.RightHandSide(V(3), 0.1));
         Assert.Throws<ArgumentException>(() => passes.WarmStart(V(12), V(9), 2.0, -1.0));
         Assert.Throws<ArgumentException>(() => passes.WarmStartGram(V(12), V(9), null, null));
