@@ -491,23 +491,41 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             }
             else
             {
-                // The hot loop of every conjugate-gradient iteration, written out as SpringLinearization.Product.
+                // The hot loop of every conjugate-gradient iteration, written out as SpringLinearization.Product, over
+                // runs of consecutive springs that share their first end (a cloth adds its springs particle by
+                // particle): that end's w is loaded once and its sum kept in registers until the run ends, instead of
+                // each spring's addition waiting for the store of the one before. The same additions in the same
+                // order (no spring of a run has the run's particle as its second end), so the same bits.
                 var count = _pairs.Count;
-                for (var s = 0; s < count; s++)
+                var s = 0;
+                while (s < count)
                 {
-                    long a = 3 * first[s], b = 3 * second[s];
-                    double* wa = wp + a, wb = wp + b, ya = y + a, yb = y + b;
-                    var q = lin + (LinearStride * s);
-                    double dx = wa[0] - wb[0], dy = wa[1] - wb[1], dz = wa[2] - wb[2];
-                    double ux = q[0], uy = q[1], uz = q[2], iso = q[3];
-                    var axial = q[4] * ((ux * dx) + (uy * dy) + (uz * dz));
-                    double yx = (iso * dx) + (axial * ux), yy = (iso * dy) + (axial * uy), yz = (iso * dz) + (axial * uz);
-                    ya[0] += yx;
-                    ya[1] += yy;
-                    ya[2] += yz;
-                    yb[0] -= yx;
-                    yb[1] -= yy;
-                    yb[2] -= yz;
+                    long a = 3 * first[s];
+                    double* ya = y + a;
+                    double wax = wp[a], way = wp[a + 1], waz = wp[a + 2];
+                    double sx = ya[0], sy = ya[1], sz = ya[2];
+                    do
+                    {
+                        long b = 3 * second[s];
+                        double* wb = wp + b, yb = y + b;
+                        var q = lin + (LinearStride * s);
+                        double dx = wax - wb[0], dy = way - wb[1], dz = waz - wb[2];
+                        double ux = q[0], uy = q[1], uz = q[2], iso = q[3];
+                        var axial = q[4] * ((ux * dx) + (uy * dy) + (uz * dz));
+                        double yx = (iso * dx) + (axial * ux), yy = (iso * dy) + (axial * uy), yz = (iso * dz) + (axial * uz);
+                        sx += yx;
+                        sy += yy;
+                        sz += yz;
+                        yb[0] -= yx;
+                        yb[1] -= yy;
+                        yb[2] -= yz;
+                        s++;
+                    }
+                    while (s < count && 3L * first[s] == a);
+
+                    ya[0] = sx;
+                    ya[1] = sy;
+                    ya[2] = sz;
                 }
             }
         }
