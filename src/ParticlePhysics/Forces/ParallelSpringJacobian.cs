@@ -164,12 +164,19 @@ internal sealed unsafe class ParallelSpringJacobian
 
         public void Execute(int chunk, int chunkCount)
         {
-            var (begin, end) = Chunk.Range(chunk, chunkCount, _count);
-            for (var s = begin; s < end; s++)
+            var (first, last) = Chunk.Range(chunk, chunkCount, _count);
+            var roots = stackalloc double[2 * SpringLengths.Block];
+            for (var begin = first; begin < last; begin += SpringLengths.Block)
             {
-                SpringLinearization.PairWithForce(
-                    _x, _v, 3L * _first[s], 3L * _second[s], _parameters + (3 * s), _positionScale, _velocityScale,
-                    _linear + (5 * s), _slots + (3 * s), _forceSlots + (3 * s));
+                // Each block's lengths first, as the sequential loop takes them (SpringLengths).
+                var end = Math.Min(last, begin + SpringLengths.Block);
+                SpringLengths.Compute(_x, _first, _second, begin, end, roots);
+                for (var s = begin; s < end; s++)
+                {
+                    SpringLinearization.PairWithForce(
+                        _x, _v, 3L * _first[s], 3L * _second[s], _parameters + (3 * s), _positionScale, _velocityScale,
+                        roots + (2 * (s - begin)), _linear + (5 * s), _slots + (3 * s), _forceSlots + (3 * s));
+                }
             }
         }
     }

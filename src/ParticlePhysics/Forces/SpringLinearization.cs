@@ -57,18 +57,19 @@ internal static unsafe class SpringLinearization
     /// <paramref name="linear"/>, df/dx (v_a - v_b) at end a into <paramref name="y"/>, and into
     /// <paramref name="force"/> the vector (k (l - L) + c (v_a - v_b) . u) u that the force loop subtracts at end a and
     /// adds at end b (zero when l = 0). Every value is computed by the same operations as in <see cref="Pair"/> and in
-    /// <see cref="SpringNetwork.AddForces"/>, so the bits are theirs.
+    /// <see cref="SpringNetwork.AddForces"/>, so the bits are theirs. <paramref name="roots"/> holds the spring's l and
+    /// 1 / l as <see cref="SpringLengths.Compute"/> wrote them.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static void PairWithForce(
         double* x, double* v, long a, long b, double* parameters, double positionScale, double velocityScale,
-        double* linear, double* y, double* force)
+        double* roots, double* linear, double* y, double* force)
     {
         double k = parameters[0], restLength = parameters[1], c = parameters[2];
         double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
         double dvx = v[a] - v[b], dvy = v[a + 1] - v[b + 1], dvz = v[a + 2] - v[b + 2];
-        var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
-        if (lengthSquared == 0.0)
+        var length = roots[0];
+        if (length == 0.0)
         {
             // As Pair, operation for operation (so that signed zeros agree too), and no force: the force loop adds a
             // zero vector there.
@@ -83,8 +84,7 @@ internal static unsafe class SpringLinearization
             return;
         }
 
-        var length = Math.Sqrt(lengthSquared);
-        var inverse = 1.0 / length;
+        var inverse = roots[1];
         var transverse = Math.Max(0.0, 1.0 - (restLength * inverse));
         double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
         linear[0] = ux;

@@ -399,62 +399,68 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             else
             {
                 // The arithmetic of SpringLinearization.PairWithForce, written out with locals only (through the
-                // helper's output pointers the loop ran slower than the three separate loops): the same operations.
+                // helper's output pointers the loop ran slower than the three separate loops): the same operations,
+                // in blocks whose lengths come first (SpringLengths).
                 var count = _pairs.Count;
                 var y = stackalloc double[6]; // (for a spring of zero length only)
-                for (var s = 0; s < count; s++)
+                var roots = stackalloc double[2 * SpringLengths.Block];
+                for (var begin = 0; begin < count; begin += SpringLengths.Block)
                 {
-                    long a = 3 * first[s], b = 3 * second[s];
-                    var q = lin + (LinearStride * s);
-                    var c = p + (PairStride * s);
-                    double k = c[0], restLength = c[1], damping = c[2];
-                    double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
-                    double dvx = v[a] - v[b], dvy = v[a + 1] - v[b + 1], dvz = v[a + 2] - v[b + 2];
-                    var lengthSquared = (dx * dx) + (dy * dy) + (dz * dz);
-                    double yx, yy, yz, fx, fy, fz;
-                    if (lengthSquared == 0.0)
+                    var end = Math.Min(count, begin + SpringLengths.Block);
+                    SpringLengths.Compute(x, first, second, begin, end, roots);
+                    for (var s = begin; s < end; s++)
                     {
-                        SpringLinearization.PairWithForce(x, v, a, b, c, positionScale, velocityScale, q, y, y + 3);
-                        (yx, yy, yz, fx, fy, fz) = (y[0], y[1], y[2], y[3], y[4], y[5]);
-                    }
-                    else
-                    {
-                        var length = Math.Sqrt(lengthSquared);
-                        var inverse = 1.0 / length;
-                        var transverse = Math.Max(0.0, 1.0 - (restLength * inverse));
-                        double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
-                        var iso = k * transverse;
-                        var axial = k * (1.0 - transverse);
-                        var t = -((positionScale * k * (1.0 - transverse)) + (velocityScale * damping));
-                        var sIso = -positionScale * k * transverse;
-                        q[0] = ux;
-                        q[1] = uy;
-                        q[2] = uz;
-                        q[3] = sIso;
-                        q[4] = t;
-                        var closing = (ux * dvx) + (uy * dvy) + (uz * dvz);
-                        var along = axial * closing;
-                        yx = -((iso * dvx) + (along * ux));
-                        yy = -((iso * dvy) + (along * uy));
-                        yz = -((iso * dvz) + (along * uz));
-                        var magnitude = (k * (length - restLength)) + (damping * closing);
-                        fx = magnitude * ux;
-                        fy = magnitude * uy;
-                        fz = magnitude * uz;
-                    }
+                        long a = 3 * first[s], b = 3 * second[s];
+                        var q = lin + (LinearStride * s);
+                        var c = p + (PairStride * s);
+                        double k = c[0], restLength = c[1], damping = c[2];
+                        double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
+                        double dvx = v[a] - v[b], dvy = v[a + 1] - v[b + 1], dvz = v[a + 2] - v[b + 2];
+                        var length = roots[2 * (s - begin)];
+                        double yx, yy, yz, fx, fy, fz;
+                        if (length == 0.0)
+                        {
+                            SpringLinearization.PairWithForce(x, v, a, b, c, positionScale, velocityScale, roots + (2 * (s - begin)), q, y, y + 3);
+                            (yx, yy, yz, fx, fy, fz) = (y[0], y[1], y[2], y[3], y[4], y[5]);
+                        }
+                        else
+                        {
+                            var inverse = roots[(2 * (s - begin)) + 1];
+                            var transverse = Math.Max(0.0, 1.0 - (restLength * inverse));
+                            double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
+                            var iso = k * transverse;
+                            var axial = k * (1.0 - transverse);
+                            var t = -((positionScale * k * (1.0 - transverse)) + (velocityScale * damping));
+                            var sIso = -positionScale * k * transverse;
+                            q[0] = ux;
+                            q[1] = uy;
+                            q[2] = uz;
+                            q[3] = sIso;
+                            q[4] = t;
+                            var closing = (ux * dvx) + (uy * dvy) + (uz * dvz);
+                            var along = axial * closing;
+                            yx = -((iso * dvx) + (along * ux));
+                            yy = -((iso * dvy) + (along * uy));
+                            yz = -((iso * dvz) + (along * uz));
+                            var magnitude = (k * (length - restLength)) + (damping * closing);
+                            fx = magnitude * ux;
+                            fy = magnitude * uy;
+                            fz = magnitude * uz;
+                        }
 
-                    f[a] -= fx;
-                    f[a + 1] -= fy;
-                    f[a + 2] -= fz;
-                    f[b] += fx;
-                    f[b + 1] += fy;
-                    f[b + 2] += fz;
-                    into[a] += yx;
-                    into[a + 1] += yy;
-                    into[a + 2] += yz;
-                    into[b] -= yx;
-                    into[b + 1] -= yy;
-                    into[b + 2] -= yz;
+                        f[a] -= fx;
+                        f[a + 1] -= fy;
+                        f[a + 2] -= fz;
+                        f[b] += fx;
+                        f[b + 1] += fy;
+                        f[b + 2] += fz;
+                        into[a] += yx;
+                        into[a + 1] += yy;
+                        into[a + 2] += yz;
+                        into[b] -= yx;
+                        into[b + 1] -= yy;
+                        into[b + 2] -= yz;
+                    }
                 }
 
                 GatherDiagonalBlocks(d, lin); // from the linearisation just written
