@@ -79,10 +79,10 @@ public sealed class FixedTimestepDriver
         _pendingPrevious = new double[system.CoordinateCount];
         _frameState = new double[system.Dimension];
 
-        // Room for the integrator's state up front, so that no frame allocates: implicit Euler's grows to 1 + 12 values
-        // per particle over its first steps; 1024 + 12 per particle is what a snapshot admits of any integrator.
+        // Room for the integrator's state up front, so that no frame allocates: implicit Euler's grows to 1 + 24 values
+        // per particle over its first steps; IntegratorStateLimit is what a snapshot admits of any integrator.
         _frameIntegratorState = integrator is IStatefulIntegrator stateful
-            ? new double[Math.Max(stateful.StateLength, 1024 + (12 * system.Count))]
+            ? new double[Math.Max(stateful.StateLength, IntegratorStateLimit.MaxLength(system.Count))]
             : Array.Empty<double>();
         system.Positions.CopyTo(_previous);
     }

@@ -37,8 +37,13 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 
     private readonly double[] _partial = new double[AggregationMultigrid.Chunks];
     private readonly double[] _secondPartial = new double[AggregationMultigrid.Chunks];
-    // The six sums of WarmStartGram, each per chunk: u1 . q1, u1 . q2, u2 . q1, u2 . q2, u1 . b, u2 . b.
-    private readonly double[][] _gramPartials = NewPartials(6);
+    // The sums of WarmStartGram, each per chunk: u_a . q_c for a, c < count (row-major), then u_a . b.
+    private readonly double[][] _gramPartials = NewPartials((WarmStartHistory.Depth * WarmStartHistory.Depth) + WarmStartHistory.Depth);
+    // The vectors of the warm start passes (pinned for the pass's duration) and their count.
+    private readonly IntPtr[] _startVectors = new IntPtr[WarmStartHistory.Depth];
+    private readonly IntPtr[] _startProducts = new IntPtr[WarmStartHistory.Depth];
+    private readonly double[] _startCoefficients = new double[WarmStartHistory.Depth];
+    private int _startCount;
     private double[] _masses = Array.Empty<double>();
     private double[] _inverses = Array.Empty<double>();
     private double[] _inverseMasses = Array.Empty<double>();
@@ -162,60 +167,81 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     }
 
     /// <summary>
-    /// dv = c1 last + c2 previous (or c1 last when <paramref name="previous"/> is null) on the free particles, 0 on
-    /// pinned ones: the warm start from the last two steps' dv (c1 = 2, c2 = -1 is their linear extrapolation).
+    /// dv = c_0 u_0 + c_1 u_1 + ... (the first <paramref name="count"/> of <paramref name="vectors"/> and
+    /// <paramref name="coefficients"/>, added in that order) on the free particles, 0 on pinned ones: the warm start
+    /// from the last steps' dv (c = (2, -1) on the last two is their linear extrapolation).
     /// </summary>
-    public void WarmStart(double[] last, double[]? previous, double c1, double c2)
+    public void WarmStart(double[][] vectors, double[] coefficients, int count)
     {
-        CheckLength(last);
-        if (previous is not null)
+        CheckStartVectors(vectors, count, nameof(vectors));
+        if (coefficients.Length < count)
         {
-            CheckLength(previous);
+            throw new ArgumentException($"The warm start needs {count} coefficients; got {coefficients.Length}.", nameof(coefficients));
         }
 
-        fixed (double* l = last, q = previous)
-        {
-            _a = l;
-            _b = q;
-            _scalar = c1;
-            _secondScalar = c2;
-            _ = Run(WarmStartPass);
-        }
+        Array.Copy(coefficients, _startCoefficients, count);
+        RunOverStartVectors(WarmStartPass, vectors, null, count);
     }
 
     /// <summary>
-    /// The sums that choose the warm start in the plane of the last two steps' dv, u1 = last and u2 = previous, from
-    /// their products q1 ~ A u1 and q2 ~ A u2 (each step's b - r at its end), over the free particles: u1 . q1,
-    /// u1 . q2, u2 . q1, u2 . q2, u1 . b and u2 . b, each summed in chunk order (the u2 sums are 0 without a previous
-    /// step). Needs b.
+    /// The sums that choose the warm start in the span of the last steps' dv u_0 .. u_{count-1}, from their products
+    /// q_a ~ A u_a (each step's b - r at its end), over the free particles: <paramref name="gram"/>[a count + c] =
+    /// u_a . q_c and <paramref name="projections"/>[a] = u_a . b, each summed in chunk order. Needs b.
     /// </summary>
-    public (double U1Q1, double U1Q2, double U2Q1, double U2Q2, double U1B, double U2B) WarmStartGram(
-        double[] last, double[] lastProduct, double[]? previous, double[]? previousProduct)
+    public void WarmStartGram(double[][] vectors, double[][] products, int count, double[] gram, double[] projections)
     {
-        CheckLength(last);
-        CheckLength(lastProduct);
-        if ((previous is null) != (previousProduct is null))
+        CheckStartVectors(vectors, count, nameof(vectors));
+        CheckStartVectors(products, count, nameof(products));
+        if (gram.Length < count * count || projections.Length < count)
         {
-            throw new ArgumentException("The previous step's dv and its product come together.");
+            throw new ArgumentException($"The warm start's sums need {count * count} and {count} values.", nameof(gram));
         }
 
-        if (previous is not null)
+        RunOverStartVectors(WarmStartGramPass, vectors, products, count);
+        for (var j = 0; j < (count * count) + count; j++)
         {
-            CheckLength(previous);
-            CheckLength(previousProduct!);
+            var sum = Chunk.Sum(_gramPartials[j]);
+            if (j < count * count)
+            {
+                gram[j] = sum;
+            }
+            else
+            {
+                projections[j - (count * count)] = sum;
+            }
+        }
+    }
+
+    /// <summary>Checks that there are 1 to <see cref="WarmStartHistory.Depth"/> vectors of 3 values per particle.</summary>
+    private void CheckStartVectors(double[][] vectors, int count, string name)
+    {
+        if (count < 1 || count > WarmStartHistory.Depth || vectors.Length < count)
+        {
+            throw new ArgumentException($"The warm start takes 1 to {WarmStartHistory.Depth} vectors; got {count} of {vectors.Length}.", name);
         }
 
-        fixed (double* u1 = last, q1 = lastProduct, u2 = previous, q2 = previousProduct)
+        for (var a = 0; a < count; a++)
         {
-            _a = u1;
-            _b = u2;
-            _c = q1;
-            _d = q2;
-            _ = Run(WarmStartGramPass);
+            CheckLength(vectors[a]);
         }
+    }
 
-        var g = _gramPartials;
-        return (Chunk.Sum(g[0]), Chunk.Sum(g[1]), Chunk.Sum(g[2]), Chunk.Sum(g[3]), Chunk.Sum(g[4]), Chunk.Sum(g[5]));
+    /// <summary>Runs <paramref name="operation"/> with the first <paramref name="count"/> vectors (and products) pinned.</summary>
+    private void RunOverStartVectors(int operation, double[][] vectors, double[][]? products, int count)
+    {
+        // At most four of each (WarmStartHistory.Depth): pinned one by one, an absent one as the first.
+        double[] Pick(double[][] from, int a) => from[a < count ? a : 0];
+        fixed (double* u0 = Pick(vectors, 0), u1 = Pick(vectors, 1), u2 = Pick(vectors, 2), u3 = Pick(vectors, 3))
+        fixed (double* q0 = products is null ? null : Pick(products, 0), q1 = products is null ? null : Pick(products, 1))
+        fixed (double* q2 = products is null ? null : Pick(products, 2), q3 = products is null ? null : Pick(products, 3))
+        {
+            (_startVectors[0], _startVectors[1], _startVectors[2], _startVectors[3]) = ((IntPtr)u0, (IntPtr)u1, (IntPtr)u2, (IntPtr)u3);
+            (_startProducts[0], _startProducts[1], _startProducts[2], _startProducts[3]) = ((IntPtr)q0, (IntPtr)q1, (IntPtr)q2, (IntPtr)q3);
+            _startCount = count;
+            _ = Run(operation);
+            Array.Clear(_startVectors, 0, _startVectors.Length);
+            Array.Clear(_startProducts, 0, _startProducts.Length);
+        }
     }
 
     /// <summary>q = b - r on the free particles, 0 on pinned ones: A dv for the solution just found, up to the solve's residual.</summary>
@@ -317,31 +343,36 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                 for (var i = begin; i < end; i++)
                 {
                     var o = 3 * i;
-                    double* dv = _pDv + o, last = _a + o;
+                    var dv = _pDv + o;
                     if (_pInverseMasses[i] == 0.0)
                     {
                         dv[0] = dv[1] = dv[2] = 0.0;
+                        continue;
                     }
-                    else if (_b is null)
+
+                    for (var k = 0; k < 3; k++)
                     {
-                        dv[0] = _scalar * last[0];
-                        dv[1] = _scalar * last[1];
-                        dv[2] = _scalar * last[2];
-                    }
-                    else
-                    {
-                        var previous = _b + o;
-                        dv[0] = (_scalar * last[0]) + (_secondScalar * previous[0]);
-                        dv[1] = (_scalar * last[1]) + (_secondScalar * previous[1]);
-                        dv[2] = (_scalar * last[2]) + (_secondScalar * previous[2]);
+                        var start = _startCoefficients[0] * ((double*)_startVectors[0])[o + k];
+                        for (var a = 1; a < _startCount; a++)
+                        {
+                            start += _startCoefficients[a] * ((double*)_startVectors[a])[o + k];
+                        }
+
+                        dv[k] = start;
                     }
                 }
 
                 break;
             case WarmStartGramPass:
                 {
-                    double u1q1 = 0, u1q2 = 0, u2q1 = 0, u2q2 = 0, u1b = 0, u2b = 0;
-                    var two = _b is not null;
+                    // The count^2 + count sums of this chunk, each in increasing coordinate order.
+                    var count = _startCount;
+                    var sums = stackalloc double[(WarmStartHistory.Depth * WarmStartHistory.Depth) + WarmStartHistory.Depth];
+                    for (var j = 0; j < (count * count) + count; j++)
+                    {
+                        sums[j] = 0.0;
+                    }
+
                     for (var i = begin; i < end; i++)
                     {
                         if (_pInverseMasses[i] == 0.0)
@@ -351,22 +382,26 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 
                         for (var k = 3 * i; k < (3 * i) + 3; k++)
                         {
-                            double a1 = _a[k], c1 = _c[k], bk = _pB[k];
-                            u1q1 += a1 * c1;
-                            u1b += a1 * bk;
-                            if (two)
+                            var bk = _pB[k];
+                            for (var a = 0; a < count; a++)
                             {
-                                double a2 = _b[k], c2 = _d[k];
-                                u1q2 += a1 * c2;
-                                u2q1 += a2 * c1;
-                                u2q2 += a2 * c2;
-                                u2b += a2 * bk;
+                                var ua = ((double*)_startVectors[a])[k];
+                                var row = sums + (a * count);
+                                for (var c = 0; c < count; c++)
+                                {
+                                    row[c] += ua * ((double*)_startProducts[c])[k];
+                                }
+
+                                sums[(count * count) + a] += ua * bk;
                             }
                         }
                     }
 
-                    var g = _gramPartials;
-                    (g[0][chunk], g[1][chunk], g[2][chunk], g[3][chunk], g[4][chunk], g[5][chunk]) = (u1q1, u1q2, u2q1, u2q2, u1b, u2b);
+                    for (var j = 0; j < (count * count) + count; j++)
+                    {
+                        _gramPartials[j][chunk] = sums[j];
+                    }
+
                     break;
                 }
 

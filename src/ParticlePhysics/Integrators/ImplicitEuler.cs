@@ -31,25 +31,19 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     private double _tolerance = 1e-6;
     private int _maxIterations = 200;
 
-    // Warm start, as of the last committed step (IStatefulIntegrator): the last two steps' dv, how many of them are
-    // known (0, 1 or 2) and their length; and their products with their steps' matrices, A dv = b - r at the end of
-    // each solve, for the most recent _knownProducts of them (fewer than the steps after a state of the format without
-    // products was read). A step solves into the scratch _dv and _product; CommitStep makes them the last ones.
-    private double[]? _lastDv;
-    private double[]? _previousDv;
-    private double[]? _lastProduct;
-    private double[]? _previousProduct;
-    private double[]? _product;
-    private int _knownSteps;
-    private int _knownProducts;
-    private int _dvLength = -1;
-    private int _pendingKnown = -1; // the steps known once the pending step is committed; -1: none pending
-    private int _pendingKnownProducts;
+    // Warm start, as of the last committed step (IStatefulIntegrator): the last steps' dv and their products with
+    // their steps' matrices. A step solves into the history's scratch pair; CommitStep makes it the newest.
+    private readonly WarmStartHistory _history = new();
+    private readonly double[][] _startVectors = new double[WarmStartHistory.Depth][];
+    private readonly double[][] _startProducts = new double[WarmStartHistory.Depth][];
+    private readonly double[] _startCoefficients = new double[WarmStartHistory.Depth];
+    private readonly double[] _gram = new double[WarmStartHistory.Depth * WarmStartHistory.Depth];
+    private readonly double[] _projections = new double[WarmStartHistory.Depth];
+    private readonly double[] _elimination = new double[WarmStartHistory.Depth * (WarmStartHistory.Depth + 1)];
 
     // Particle-system path: 3 N values each, except the 9 N preconditioner blocks.
     private double[]? _force;
     private double[]? _rhs;
-    private double[]? _dv;
     private double[]? _residual;
     private double[]? _direction;
     private double[]? _directionProduct;
@@ -136,96 +130,24 @@ public sealed class ImplicitEuler : IStatefulIntegrator
 
     /// <inheritdoc />
     /// <remarks>
-    /// The warm start, so that a restored run continues bit for bit: [k + 3 p] with k = 0, 1 or 2 steps known and
-    /// p &lt;= k of them with their products, then the last step's dv (3 N values) when k &gt;= 1, the one before when
-    /// k = 2, then the last step's product when p &gt;= 1 and the one before when p = 2. (A state written before the
-    /// products were kept has p = 0: [k] and the k vectors; it is read as such.)
+    /// The warm start, so that a restored run continues bit for bit: the last steps' dv and their products (up to
+    /// four steps; the format in <see cref="WarmStartHistory"/>). The state of the library before the history was
+    /// deeper than two steps, [k + 3 p] and k + p vectors, reads as it was written.
     /// </remarks>
-    public int StateLength => 1 + ((_knownSteps + _knownProducts) * Math.Max(0, _dvLength));
+    public int StateLength => _history.StateLength;
 
     /// <inheritdoc />
-    public void WriteState(Span<double> destination)
-    {
-        if (destination.Length != StateLength)
-        {
-            throw new ArgumentException(
-                $"destination must hold exactly {StateLength} values; it holds {destination.Length}.", nameof(destination));
-        }
-
-        destination[0] = _knownSteps + (3 * _knownProducts);
-        for (var v = 0; v < _knownSteps + _knownProducts; v++)
-        {
-            StateVector(v).AsSpan(0, _dvLength).CopyTo(destination.Slice(1 + (v * _dvLength)));
-        }
-    }
+    public void WriteState(Span<double> destination) => _history.WriteState(destination);
 
     /// <inheritdoc />
-    public void ReadState(ReadOnlySpan<double> source)
-    {
-        var values = source.ForReading();
-        var header = source.Length > 0 ? values[0] : -1;
-        var known = header is 0.0 or 1.0 or 2.0 or 4.0 or 5.0 or 8.0 ? (int)header % 3 : -1;
-        var products = known >= 0 ? (int)header / 3 : 0;
-        var vectorCount = Math.Max(0, known) + products;
-        var valid = known >= 0
-            && (vectorCount == 0 ? source.Length == 1 : (source.Length - 1) % (3 * vectorCount) == 0 && source.Length > 1)
-            && DoubleChecks.FirstNonFinite(source) < 0;
-        if (!valid)
-        {
-            throw new ArgumentException(
-                "An implicit-euler state is [k + 3 p], k = 0, 1 or 2 steps known and p <= k of them with their "
-                + "products, followed by k + p vectors of 3 finite values per particle; got "
-                + $"{source.Length} values starting with {(source.Length > 0 ? Guard.Format(values[0]) : "nothing")}.",
-                nameof(source));
-        }
-
-        _pendingKnown = -1;
-        _knownSteps = known;
-        _knownProducts = products;
-        _dvLength = vectorCount == 0 ? -1 : (source.Length - 1) / vectorCount;
-        for (var v = 0; v < vectorCount; v++)
-        {
-            ref var vector = ref StateVector(v);
-            vector = StepChecks.Sized(vector, _dvLength);
-            source.Slice(1 + (v * _dvLength), _dvLength).CopyTo(vector);
-        }
-    }
-
-    /// <summary>
-    /// Vector <paramref name="v"/> of the state, in its order: the known steps' dv (the last, then the one before),
-    /// then the known products (the same order).
-    /// </summary>
-    private ref double[]? StateVector(int v)
-    {
-        if (v < _knownSteps)
-        {
-            return ref v == 0 ? ref _lastDv : ref _previousDv;
-        }
-
-        return ref v == _knownSteps ? ref _lastProduct : ref _previousProduct;
-    }
+    public void ReadState(ReadOnlySpan<double> source) => _history.ReadState(source);
 
     /// <inheritdoc />
-    /// <remarks>The warm start of the step just taken, if any, becomes the one the next step starts from.</remarks>
-    public void CommitStep()
-    {
-        if (_pendingKnown < 0)
-        {
-            return;
-        }
-
-        // Rotate the buffers: the solved dv becomes the last step's, the last becomes the one before, and the old one
-        // before is the next step's scratch. No copy, nothing allocated.
-        (_previousDv, _lastDv, _dv) = (_lastDv, _dv, _previousDv);
-        (_previousProduct, _lastProduct, _product) = (_lastProduct, _product, _previousProduct);
-        _knownSteps = _pendingKnown;
-        _knownProducts = _pendingKnownProducts;
-        _dvLength = _lastDv!.Length;
-        _pendingKnown = -1;
-    }
+    /// <remarks>The warm start of the step just taken, if any, becomes the newest the next step starts from.</remarks>
+    public void CommitStep() => _history.Commit();
 
     /// <inheritdoc />
-    public void DiscardStep() => _pendingKnown = -1;
+    public void DiscardStep() => _history.Discard();
 
     /// <inheritdoc />
     /// <exception cref="SimulationDivergedException">
@@ -235,7 +157,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     public void Step(IOdeSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double dt)
     {
         StepChecks.Check(system, state, next, dt);
-        _pendingKnown = -1;
+        _history.Discard();
         if (system is ILinearizableSystem linearizable)
         {
             StepLinearized(linearizable, time, state, next, dt);
@@ -247,7 +169,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
 
         if (!LastConverged && ThrowIfNotConverged)
         {
-            _pendingKnown = -1;
+            _history.Discard();
             throw new SolverNotConvergedException(
                 time + dt, LastIterations, LastResidual, system is ILinearizableSystem ? _tolerance : NewtonTolerance);
         }
@@ -261,12 +183,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         var v0 = y0.Slice(n, n);
         var f0 = _force = StepChecks.Sized(_force, n);
         var b = _rhs = StepChecks.Sized(_rhs, n);
-        var dv = _dv = StepChecks.Sized(_dv, n);
-        _lastDv ??= new double[n];     // the buffers that CommitStep rotates, all from the first step (a null one is
-        _previousDv ??= new double[n]; // no part of the committed state), so that later steps allocate nothing
-        var product = _product = StepChecks.Sized(_product, n);
-        _lastProduct ??= new double[n];
-        _previousProduct ??= new double[n];
+        var (dv, product) = _history.Scratch(n);
         var r = _residual = StepChecks.Sized(_residual, n);
         var p = _direction = StepChecks.Sized(_direction, n);
         var s = _directionProduct = StepChecks.Sized(_directionProduct, n);
@@ -306,34 +223,41 @@ public sealed class ImplicitEuler : IStatefulIntegrator
 
         passes.InvertBlocks();
 
-        // Preconditioned conjugate gradients. Motion is smooth, so dv changes little from step to step: start in the
-        // span of the last two steps' dv u1, u2 (or the last one's), else from 0. Any start converges to the same
-        // tolerance; a good one halves the iterations. Under block Jacobi: the linear extrapolation 2 u1 - u2 (or u1).
-        // Under the multigrid, with the products q_k ~ A u_k that the last solves left behind (each one's b - r, with
-        // its own step's matrix: no product is spent here), the start c1 u1 + c2 u2 that minimises the energy
-        // 1/2 x.A x - b.x in that plane as well as those products tell, from the Galerkin conditions
-        // u_j . (b - c1 q1 - c2 q2) = 0 (one pass for the sums, a 2 x 2 solve; the extrapolation if it is singular).
-        // Measured (docs/benchmarks.md, "The warm start"): 7.10 iterations per frame instead of 7.55 on the 64 x 64
-        // cloth's first second at 1e-3, fewer in 9 of 10 cases and 3 % fewer in all (not while a large cloth settles:
-        // 5 % more there, its products being older than its motion); under block Jacobi it took 15 % more (the energy
-        // it removes is in the stiff components, which block Jacobi damps anyway), hence not there.
+        // Preconditioned conjugate gradients. Motion is smooth, so dv changes little from step to step: start from
+        // the last steps' dv u_0, u_1, ... (newest first), else from 0. Any start converges to the same tolerance; a
+        // good one halves the iterations. Under block Jacobi: the linear extrapolation 2 u_0 - u_1 (or u_0). Under the
+        // multigrid, with the products q_a ~ A u_a that the last solves left behind (each one's b - r, with its own
+        // step's matrix: no product is spent here), the start sum c_a u_a in the span of the last four that satisfies
+        // the Galerkin conditions u_j . (b - sum c_a q_a) = 0 (one pass for the sums, a 4 x 4 solve; fewer steps when
+        // the system is singular, the extrapolation when none is left). Measured (docs/benchmarks.md, "The warm
+        // start"): on the 64 x 64 cloth's first second, 7.10 iterations per frame at 1e-3 with the last two steps
+        // (7.55 with the extrapolation), 6.83 with four, and 20.98 and 17.10 at 1e-6; over ten cases 6038 iterations
+        // with two, 5429 with four. Under block Jacobi the plane of two took 15 % more (the energy it removes is in the
+        // stiff components, which block Jacobi damps anyway), hence not there.
         // Pinned components are always 0. The committed warm start is only read here: a step that fails leaves it as
         // it was (CommitStep moves dv and its product in).
-        var known = WarmStart && _dvLength == n ? _knownSteps : 0;
-        var knownProducts = known > 0 ? Math.Min(_knownProducts, known) : 0;
-        // The start in the plane is the multigrid's, so only its steps keep their products; taken before the solve, which
-        // may fall back to block Jacobi on the way.
+        var known = WarmStart && _history.Length == n ? _history.Known : 0;
+        var knownProducts = known > 0 ? Math.Min(_history.KnownProducts, known) : 0;
+        // The start from the products is the multigrid's, so only its steps keep their products; taken before the
+        // solve, which may fall back to block Jacobi on the way.
         var keepProduct = multigrid;
         double rr;
         if (known > 0)
         {
-            var (c1, c2) = known > 1 ? (2.0, -1.0) : (1.0, 0.0);
-            if (multigrid && knownProducts == known)
+            var count = multigrid && knownProducts > 0 ? StartInSpan(passes, knownProducts) : 0;
+            if (count == 0)
             {
-                (c1, c2) = StartInPlane(passes, known, c1, c2);
+                count = Math.Min(2, known);
+                _startCoefficients[0] = count > 1 ? 2.0 : 1.0;
+                _startCoefficients[1] = -1.0;
             }
 
-            passes.WarmStart(_lastDv!, known > 1 ? _previousDv : null, c1, c2);
+            for (var a = 0; a < count; a++)
+            {
+                _startVectors[a] = _history.Dv(a);
+            }
+
+            passes.WarmStart(_startVectors, _startCoefficients, count);
             system.AddJacobianProduct(dv, jw); // (jw is 0: the right-hand side's pass cleared it as it read it)
             rr = passes.Residual();
         }
@@ -404,8 +328,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
             throw Diverged(time, end, 0, residualNorm, "the implicit solve's residual is not finite");
         }
 
-        _pendingKnown = Math.Min(2, known + 1);
-        _pendingKnownProducts = keepProduct ? Math.Min(_pendingKnown, knownProducts + 1) : 0;
+        var pendingKnown = Math.Min(WarmStartHistory.Depth, known + 1);
+        _history.SetPending(pendingKnown, keepProduct ? Math.Min(pendingKnown, knownProducts + 1) : 0);
         if (keepProduct)
         {
             passes.SolutionProduct(product);
@@ -415,36 +339,102 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     }
 
     /// <summary>
-    /// The coefficients (c1, c2) of the warm start c1 dv(n-1) + c2 dv(n-2) that satisfy the Galerkin conditions
-    /// u_j . (b - c1 q1 - c2 q2) = 0 with the stored products q_k (c2 = 0 with one step known: c1 = u1 . b / u1 . q1);
-    /// (<paramref name="fallbackC1"/>, <paramref name="fallbackC2"/>), the extrapolation, when the system is
-    /// singular or its solution is not finite.
+    /// The start in the span of the newest <paramref name="available"/> steps' dv (those with products): the
+    /// coefficients c that satisfy the Galerkin conditions u_j . (b - sum_a c_a q_a) = 0, j, a &lt; m, into
+    /// <see cref="_startCoefficients"/>, by Gaussian elimination with partial pivoting; when that m x m system is
+    /// singular (steps whose dv are nearly dependent, as a cloth at rest gives) or its solution is not finite, the
+    /// oldest step is dropped and the rest solved again. Returns m, or 0 when no step is left (the caller
+    /// extrapolates).
     /// </summary>
-    private (double C1, double C2) StartInPlane(ConjugateGradientPasses passes, int known, double fallbackC1, double fallbackC2)
+    private int StartInSpan(ConjugateGradientPasses passes, int available)
     {
-        var two = known > 1;
-        var g = passes.WarmStartGram(_lastDv!, _lastProduct!, two ? _previousDv : null, two ? _previousProduct : null);
-        double c1, c2;
-        if (two)
+        var m = available;
+        for (var a = 0; a < m; a++)
         {
-            // [u1.q1 u1.q2; u2.q1 u2.q2] (c1, c2) = (u1.b, u2.b), by Cramer's rule.
-            var det = (g.U1Q1 * g.U2Q2) - (g.U1Q2 * g.U2Q1);
-            var scale = Math.Abs(g.U1Q1 * g.U2Q2) + Math.Abs(g.U1Q2 * g.U2Q1);
-            if (!(Math.Abs(det) > 1e-12 * scale))
+            _startVectors[a] = _history.Dv(a);
+            _startProducts[a] = _history.Product(a);
+        }
+
+        passes.WarmStartGram(_startVectors, _startProducts, m, _gram, _projections);
+        var stride = m;
+        for (; m > 0; m--)
+        {
+            if (SolveGalerkin(m, stride))
             {
-                return (fallbackC1, fallbackC2); // the two steps' dv (nearly) parallel, or zero
+                return m;
+            }
+        }
+
+        return 0;
+    }
+
+    /// <summary>
+    /// Solves the leading m x m block of the Gram matrix (row stride <paramref name="stride"/>) against the
+    /// projections; false when a pivot is at most 1e-12 of the block's largest entry or a coefficient is not finite.
+    /// </summary>
+    private bool SolveGalerkin(int m, int stride)
+    {
+        var e = _elimination; // m rows of m + 1: [G | u . b]
+        var width = m + 1;
+        var scale = 0.0;
+        for (var i = 0; i < m; i++)
+        {
+            for (var j = 0; j < m; j++)
+            {
+                e[(i * width) + j] = _gram[(i * stride) + j];
+                scale = Math.Max(scale, Math.Abs(e[(i * width) + j]));
             }
 
-            c1 = ((g.U1B * g.U2Q2) - (g.U1Q2 * g.U2B)) / det;
-            c2 = ((g.U1Q1 * g.U2B) - (g.U2Q1 * g.U1B)) / det;
-        }
-        else
-        {
-            c1 = g.U1Q1 > 0.0 ? g.U1B / g.U1Q1 : fallbackC1;
-            c2 = 0.0;
+            e[(i * width) + m] = _projections[i];
         }
 
-        return DoubleChecks.IsFinite(c1) && DoubleChecks.IsFinite(c2) ? (c1, c2) : (fallbackC1, fallbackC2);
+        for (var column = 0; column < m; column++)
+        {
+            var pivot = column;
+            for (var i = column + 1; i < m; i++)
+            {
+                if (Math.Abs(e[(i * width) + column]) > Math.Abs(e[(pivot * width) + column]))
+                {
+                    pivot = i;
+                }
+            }
+
+            if (!(Math.Abs(e[(pivot * width) + column]) > 1e-12 * scale))
+            {
+                return false;
+            }
+
+            for (var j = 0; j < width; j++)
+            {
+                (e[(column * width) + j], e[(pivot * width) + j]) = (e[(pivot * width) + j], e[(column * width) + j]);
+            }
+
+            for (var i = column + 1; i < m; i++)
+            {
+                var factor = e[(i * width) + column] / e[(column * width) + column];
+                for (var j = column; j < width; j++)
+                {
+                    e[(i * width) + j] -= factor * e[(column * width) + j];
+                }
+            }
+        }
+
+        for (var i = m - 1; i >= 0; i--)
+        {
+            var sum = e[(i * width) + m];
+            for (var j = i + 1; j < m; j++)
+            {
+                sum -= e[(i * width) + j] * _startCoefficients[j];
+            }
+
+            _startCoefficients[i] = sum / e[(i * width) + i];
+            if (!DoubleChecks.IsFinite(_startCoefficients[i]))
+            {
+                return false;
+            }
+        }
+
+        return true;
     }
 
     /// <summary>

@@ -48,10 +48,10 @@ public sealed class SimulationSnapshot
 
     /// <summary>
     /// The largest integrator state, in doubles, that the format accepts for <paramref name="particleCount"/>
-    /// particles: 1024 plus 12 per particle (implicit Euler's warm start is up to four vectors over the particles: the
-    /// last two steps' velocity changes and their products; it was 6 per particle before the products were kept).
+    /// particles: <see cref="IntegratorStateLimit.MaxLength"/>, 1024 plus 24 per particle (implicit Euler's warm
+    /// start is up to eight vectors over the particles: the last four steps' velocity changes and their products).
     /// </summary>
-    public static int MaxIntegratorStateLength(int particleCount) => 1024 + (12 * Math.Max(0, particleCount));
+    public static int MaxIntegratorStateLength(int particleCount) => IntegratorStateLimit.MaxLength(particleCount);
 
     /// <summary>The largest integrator name, in UTF-8 bytes, that the binary format accepts.</summary>
     public const int MaxIntegratorNameLength = 256;

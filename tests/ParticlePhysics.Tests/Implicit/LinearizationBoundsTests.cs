@@ -176,10 +176,14 @@ public class LinearizationBoundsTests
         Assert.Throws<ArgumentException>(() => passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(35), masses, masses, null));
         passes.Bind(V(12), V(12), V(12), V(12), V(12), V(12), V(12), V(36), masses, masses, null);
         Assert.Throws<ArgumentException>(() => passes.RightHandSide(V(3), 0.1));
-        Assert.Throws<ArgumentException>(() => passes.WarmStart(V(12), V(9), 2.0, -1.0));
-        Assert.Throws<ArgumentException>(() => passes.WarmStartGram(V(12), V(9), null, null));
-        Assert.Throws<ArgumentException>(() => passes.WarmStartGram(V(12), V(12), V(12), null));
-        Assert.Throws<ArgumentException>(() => passes.WarmStartGram(V(12), V(12), V(12), V(11)));
+        Assert.Throws<ArgumentException>(() => passes.WarmStart(new[] { V(12), V(9) }, new[] { 2.0, -1.0 }, 2));
+        Assert.Throws<ArgumentException>(() => passes.WarmStart(new[] { V(12) }, new[] { 2.0, -1.0 }, 2)); // fewer vectors than counted
+        Assert.Throws<ArgumentException>(() => passes.WarmStart(new[] { V(12), V(12) }, new[] { 2.0 }, 2)); // fewer coefficients
+        Assert.Throws<ArgumentException>(() => passes.WarmStart(new[] { V(12), V(12), V(12), V(12), V(12) }, new double[5], 5)); // past the depth
+        Assert.Throws<ArgumentException>(() => passes.WarmStartGram(new[] { V(12) }, new[] { V(9) }, 1, new double[1], new double[1]));
+        Assert.Throws<ArgumentException>(() => passes.WarmStartGram(new[] { V(12), V(12) }, new[] { V(12), V(11) }, 2, new double[4], new double[2]));
+        Assert.Throws<ArgumentException>(() => passes.WarmStartGram(new[] { V(12), V(12) }, new[] { V(12), V(12) }, 2, new double[3], new double[2]));
+        Assert.Throws<ArgumentException>(() => passes.WarmStartGram(new[] { V(12) }, new[] { V(12) }, 0, new double[1], new double[1]));
         Assert.Throws<ArgumentException>(() => passes.SolutionProduct(V(11)));
         Assert.Throws<ArgumentException>(() => passes.EndState(V(12), V(12), V(12), V(11), 0.1));
         Assert.Equal(0.0, passes.RightHandSide(V(12), 0.1)); // bound right, a pass runs: b = 0, b . b = 0

@@ -70,22 +70,27 @@ public class SimulationSnapshotTests
     [Fact]
     public void Under_the_multigrid_the_warm_starts_products_are_part_of_the_state_and_the_older_format_still_reads()
     {
-        // The 16 x 16 cloth: 256 particles, so implicit Euler's multigrid preconditioner, whose warm start keeps each
-        // step's product A dv beside its dv: the header k + 3 p counts both.
+        // The 16 x 16 cloth: 256 particles, so implicit Euler's multigrid preconditioner, whose warm start keeps the
+        // last four steps' dv and their products A dv: the header counts both, k + 3 p while k <= 2 (the format of the
+        // library that kept two steps) and 16 + k + 8 p beyond.
         var n = new ClothScenario { Resolution = 1.0 / 15 }.Build().CoordinateCount;
         var original = new ClothScenario { Resolution = 1.0 / 15 }.Build();
         var implicitEuler = new ImplicitEuler { Tolerance = 1e-3 };
         StateMetrics.Run(original, implicitEuler, 1.0 / 60, 1);
         Assert.Equal(1 + (2 * n), implicitEuler.StateLength);
         Assert.Equal(4.0, Written(implicitEuler)[0]); // one step known, with its product
-        StateMetrics.Run(original, implicitEuler, 1.0 / 60, 4);
-        Assert.Equal(1 + (4 * n), implicitEuler.StateLength);
+        StateMetrics.Run(original, implicitEuler, 1.0 / 60, 1);
+        Assert.Equal(8.0, Written(implicitEuler)[0]); // two steps, both products: as the older library wrote it
+        var twoSteps = Written(implicitEuler);
+        StateMetrics.Run(original, implicitEuler, 1.0 / 60, 1);
+        Assert.Equal(16.0 + 3 + 24, Written(implicitEuler)[0]); // three
+        StateMetrics.Run(original, implicitEuler, 1.0 / 60, 2);
+        Assert.Equal(1 + (8 * n), implicitEuler.StateLength);
         var state = Written(implicitEuler);
-        Assert.Equal(8.0, state[0]); // two steps, both products
+        Assert.Equal(16.0 + 4 + 32, state[0]); // four steps, four products: the most it keeps
         Assert.True(SimulationSnapshot.MaxIntegratorStateLength(n / 3) >= state.Length);
 
-        // Restored from the full state, a run continues bit for bit; from the older format (the two dv alone) it
-        // starts from their extrapolation, then keeps products again.
+        // Restored from the full state, a run continues bit for bit.
         var atSave = original.State.ToArray();
         var time = original.Time;
         StateMetrics.Run(original, implicitEuler, 1.0 / 60, 3);
@@ -97,23 +102,34 @@ public class SimulationSnapshotTests
         StateMetrics.Run(restored, fresh, 1.0 / 60, 3);
         Assert.Equal(StateMetrics.BitHash(original.State), StateMetrics.BitHash(restored.State));
 
+        // The older formats: two steps with their products (header 8) start from those two, then the history grows
+        // again; the two dv alone (header 2, before products were kept) start from their extrapolation.
+        var fromTwo = new ImplicitEuler { Tolerance = 1e-3 };
+        fromTwo.ReadState(twoSteps);
+        Assert.Equal(twoSteps.Length, fromTwo.StateLength);
+        restored.SetState(atSave);
+        restored.Time = time;
+        StateMetrics.Run(restored, fromTwo, 1.0 / 60, 1);
+        Assert.Equal(16.0 + 3 + 24, Written(fromTwo)[0]);
         var older = new ImplicitEuler { Tolerance = 1e-3 };
         older.ReadState(state.AsSpan(0, 1 + (2 * n)).ToArray().Select((v, i) => i == 0 ? 2.0 : v).ToArray());
         Assert.Equal(1 + (2 * n), older.StateLength);
         restored.SetState(atSave);
         restored.Time = time;
         StateMetrics.Run(restored, older, 1.0 / 60, 1);
-        Assert.Equal(5.0, Written(older)[0]); // two steps known, the last one's product
+        Assert.Equal(16.0 + 3 + 8, Written(older)[0]); // three steps known, the last one's product
         StateMetrics.Run(restored, older, 1.0 / 60, 1);
-        Assert.Equal(8.0, Written(older)[0]);
+        Assert.Equal(16.0 + 4 + 16, Written(older)[0]);
 
-        // Headers that no state has: k + 3 p with p > k, or not a whole number of vectors.
-        foreach (var header in new[] { 3.0, 6.0, 7.0, 9.0, -1.0 })
+        // Headers that no state has: p > k, k beyond 4, k <= 2 in the deep form, not whole, or not a whole number of
+        // vectors after them.
+        foreach (var header in new[] { 3.0, 6.0, 7.0, 9.0, -1.0, 16.0, 18.0, 16.0 + 5, 16.0 + 3 + 32, 16.0 + 4 + 40, 20.5 })
         {
             Assert.Throws<ArgumentException>("source", () => fresh.ReadState(new[] { header }.Concat(new double[2 * n]).ToArray()));
         }
 
         Assert.Throws<ArgumentException>("source", () => fresh.ReadState(new[] { 8.0 }.Concat(new double[(4 * n) - 3]).ToArray()));
+        Assert.Throws<ArgumentException>("source", () => fresh.ReadState(new[] { 16.0 + 4 + 32 }.Concat(new double[(8 * n) - 3]).ToArray()));
     }
 
     [Fact]
