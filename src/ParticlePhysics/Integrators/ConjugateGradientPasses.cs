@@ -340,66 +340,24 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 
                 break;
             case WarmStartPass:
-                for (var i = begin; i < end; i++)
-                {
-                    var o = 3 * i;
-                    var dv = _pDv + o;
-                    if (_pInverseMasses[i] == 0.0)
-                    {
-                        dv[0] = dv[1] = dv[2] = 0.0;
-                        continue;
-                    }
-
-                    for (var k = 0; k < 3; k++)
-                    {
-                        var start = _startCoefficients[0] * ((double*)_startVectors[0])[o + k];
-                        for (var a = 1; a < _startCount; a++)
-                        {
-                            start += _startCoefficients[a] * ((double*)_startVectors[a])[o + k];
-                        }
-
-                        dv[k] = start;
-                    }
-                }
-
+                WarmStartChunk(begin, end);
                 break;
             case WarmStartGramPass:
                 {
-                    // The count^2 + count sums of this chunk, each in increasing coordinate order.
+                    // Row a of the sums, u_a . q_0 .. q_{count-1} and u_a . b, in one sweep of the chunk per row: six
+                    // vectors at a time keep their sums in registers (all of them at once would not), and the chunk's
+                    // vectors stay in the cache between the sweeps. Each sum in increasing coordinate order.
                     var count = _startCount;
-                    var sums = stackalloc double[(WarmStartHistory.Depth * WarmStartHistory.Depth) + WarmStartHistory.Depth];
-                    for (var j = 0; j < (count * count) + count; j++)
+                    var sums = stackalloc double[5];
+                    for (var a = 0; a < count; a++)
                     {
-                        sums[j] = 0.0;
-                    }
-
-                    for (var i = begin; i < end; i++)
-                    {
-                        if (_pInverseMasses[i] == 0.0)
+                        GramRow(a, begin, end, sums);
+                        for (var c = 0; c < count; c++)
                         {
-                            continue;
+                            _gramPartials[(a * count) + c][chunk] = sums[c];
                         }
 
-                        for (var k = 3 * i; k < (3 * i) + 3; k++)
-                        {
-                            var bk = _pB[k];
-                            for (var a = 0; a < count; a++)
-                            {
-                                var ua = ((double*)_startVectors[a])[k];
-                                var row = sums + (a * count);
-                                for (var c = 0; c < count; c++)
-                                {
-                                    row[c] += ua * ((double*)_startProducts[c])[k];
-                                }
-
-                                sums[(count * count) + a] += ua * bk;
-                            }
-                        }
-                    }
-
-                    for (var j = 0; j < (count * count) + count; j++)
-                    {
-                        _gramPartials[j][chunk] = sums[j];
+                        _gramPartials[(count * count) + a][chunk] = sums[4];
                     }
 
                     break;
@@ -499,6 +457,73 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 
         _partial[chunk] = sum;
         _secondPartial[chunk] = second;
+    }
+
+    /// <summary>
+    /// dv = c_0 u_0 + ... + c_{count-1} u_{count-1} over particles [begin, end), 0 on pinned ones: one loop per count,
+    /// so that each coordinate adds exactly its count terms, in that order.
+    /// </summary>
+    private void WarmStartChunk(int begin, int end)
+    {
+        double* u0 = (double*)_startVectors[0], u1 = (double*)_startVectors[1];
+        double* u2 = (double*)_startVectors[2], u3 = (double*)_startVectors[3];
+        double c0 = _startCoefficients[0], c1 = _startCoefficients[1], c2 = _startCoefficients[2], c3 = _startCoefficients[3];
+        var count = _startCount;
+        for (var i = begin; i < end; i++)
+        {
+            long o = 3 * i;
+            var dv = _pDv + o;
+            if (_pInverseMasses[i] == 0.0)
+            {
+                dv[0] = dv[1] = dv[2] = 0.0;
+                continue;
+            }
+
+            for (var k = o; k < o + 3; k++)
+            {
+                _pDv[k] = count switch
+                {
+                    1 => c0 * u0[k],
+                    2 => (c0 * u0[k]) + (c1 * u1[k]),
+                    3 => (c0 * u0[k]) + (c1 * u1[k]) + (c2 * u2[k]),
+                    _ => (c0 * u0[k]) + (c1 * u1[k]) + (c2 * u2[k]) + (c3 * u3[k]),
+                };
+            }
+        }
+    }
+
+    /// <summary>
+    /// Over the free particles of [begin, end): sums[c] = u_a . q_c for c &lt; 4 (those at c &gt;= count are of no use
+    /// and read q_0 again) and sums[4] = u_a . b.
+    /// </summary>
+    private void GramRow(int a, int begin, int end, double* sums)
+    {
+        var count = _startCount;
+        var u = (double*)_startVectors[a];
+        var q0 = (double*)_startProducts[0];
+        var q1 = count > 1 ? (double*)_startProducts[1] : q0;
+        var q2 = count > 2 ? (double*)_startProducts[2] : q0;
+        var q3 = count > 3 ? (double*)_startProducts[3] : q0;
+        double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0, sb = 0.0;
+        for (var i = begin; i < end; i++)
+        {
+            if (_pInverseMasses[i] == 0.0)
+            {
+                continue;
+            }
+
+            for (long k = 3 * i; k < (3 * i) + 3; k++)
+            {
+                var uk = u[k];
+                s0 += uk * q0[k];
+                s1 += uk * q1[k];
+                s2 += uk * q2[k];
+                s3 += uk * q3[k];
+                sb += uk * _pB[k];
+            }
+        }
+
+        (sums[0], sums[1], sums[2], sums[3], sums[4]) = (s0, s1, s2, s3, sb);
     }
 
     /// <summary>
