@@ -51,6 +51,33 @@ internal static unsafe class Blocks3
         return true;
     }
 
+    /// <summary>
+    /// Writes the inverse of the symmetric block with upper triangle (a00, a01, a02, a11, a12, a22) into
+    /// <paramref name="packed"/> as its upper triangle, by cofactors; false (nothing written) if it is singular or not
+    /// finite. The operations of <see cref="Invert(double*, double*)"/> on the full symmetric block, whose mirrored
+    /// cofactors are the same two products (c10 = c01, c20 = c02, c21 = c12 to the last bit): the same bits, with 6
+    /// cofactors instead of 9.
+    /// </summary>
+    public static bool InvertSymmetric(double a00, double a01, double a02, double a11, double a12, double a22, double* packed)
+    {
+        double c00 = (a11 * a22) - (a12 * a12), c01 = (a02 * a12) - (a01 * a22), c02 = (a01 * a12) - (a02 * a11);
+        double c11 = (a00 * a22) - (a02 * a02), c12 = (a02 * a01) - (a00 * a12), c22 = (a00 * a11) - (a01 * a01);
+        var determinant = (a00 * c00) + (a01 * c01) + (a02 * c02);
+        if (!(Math.Abs(determinant) > 0.0) || double.IsInfinity(determinant) || double.IsNaN(determinant))
+        {
+            return false;
+        }
+
+        var s = 1.0 / determinant;
+        packed[0] = c00 * s;
+        packed[1] = c01 * s;
+        packed[2] = c02 * s;
+        packed[3] = c11 * s;
+        packed[4] = c12 * s;
+        packed[5] = c22 * s;
+        return true;
+    }
+
     /// <summary>target += source (9 values).</summary>
     public static void Add(double* target, double* source)
     {
@@ -89,19 +116,8 @@ internal static unsafe class Blocks3
         y[2] = (m[6] * x0) + (m[7] * x1) + (m[8] * x2);
     }
 
-    /// <summary>Writes the upper triangle xx, xy, xz, yy, yz, zz of a symmetric row-major block.</summary>
-    public static void PackSymmetric(double* block, double* packed)
-    {
-        packed[0] = block[0];
-        packed[1] = block[1];
-        packed[2] = block[2];
-        packed[3] = block[4];
-        packed[4] = block[5];
-        packed[5] = block[8];
-    }
-
     /// <summary>
-    /// y = M x for a symmetric block stored as its upper triangle (<see cref="PackSymmetric"/>), with the operations
+    /// y = M x for a symmetric block stored as its upper triangle xx, xy, xz, yy, yz, zz, with the operations
     /// of <see cref="Multiply"/> on the full block (y may not be x).
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]

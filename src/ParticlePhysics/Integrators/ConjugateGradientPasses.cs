@@ -549,9 +549,8 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     }
 
     /// <summary>
-    /// D_i^-1 = (M_i - J_ii)^-1 for particle i, by cofactors (<see cref="Blocks3.Invert(double*, double*)"/>), stored
-    /// as its upper triangle. The cofactors of a symmetric block are symmetric to the last bit (each pair is the same
-    /// two products), so the upper triangle is the inverse exactly as the full block held it.
+    /// D_i^-1 = (M_i - J_ii)^-1 for particle i, by the cofactors of the symmetric block (its upper triangle:
+    /// <see cref="Blocks3.InvertSymmetric"/>), stored as its upper triangle.
     /// </summary>
     private void InvertBlock(int i)
     {
@@ -568,24 +567,12 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 
         var m = _pMasses[i];
         var j = _pBlocks + (9L * i);
-        var block = stackalloc double[9];
-        for (var k = 0; k < 9; k++)
-        {
-            block[k] = -j[k];
-        }
-
-        block[0] += m;
-        block[4] += m;
-        block[8] += m;
-        if (!Blocks3.Invert(block, block))
+        if (!Blocks3.InvertSymmetric(m - j[0], -j[1], -j[2], m - j[4], -j[5], m - j[8], inverse))
         {
             // Degenerate block: fall back to plain Jacobi on the mass alone.
             inverse[0] = inverse[3] = inverse[5] = 1.0 / m;
             inverse[1] = inverse[2] = inverse[4] = 0.0;
-            return;
         }
-
-        Blocks3.PackSymmetric(block, inverse);
     }
 
     /// <summary><paramref name="count"/> arrays of one partial sum per chunk.</summary>
