@@ -230,9 +230,10 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         // step's matrix: no product is spent here), the start sum c_a u_a in the span of the last four that satisfies
         // the Galerkin conditions u_j . (b - sum c_a q_a) = 0 (one pass for the sums, a 4 x 4 solve; fewer steps when
         // the system is singular, the extrapolation when none is left). Measured (docs/benchmarks.md, "The warm
-        // start"): on the 64 x 64 cloth's first second, 7.10 iterations per frame at 1e-3 with the last two steps
-        // (7.55 with the extrapolation), 6.83 with four, and 20.98 and 17.10 at 1e-6; over ten cases 6038 iterations
-        // with two, 5429 with four. Under block Jacobi the plane of two took 15 % more (the energy it removes is in the
+        // start from the last four steps"): on the 64 x 64 cloth's first second, 7.10 iterations per frame at 1e-3
+        // with the last two steps
+        // (7.55 with the extrapolation), 6.83 with four, and 20.98 and 17.10 at 1e-6; over ten cases 6038
+        // iterations with two, 5429 with four. Under block Jacobi the plane of two took 15 % more (the energy it removes is in the
         // stiff components, which block Jacobi damps anyway), hence not there.
         // Pinned components are always 0. The committed warm start is only read here: a step that fails leaves it as
         // it was (CommitStep moves dv and its product in).
