@@ -78,8 +78,20 @@ internal sealed unsafe class AggregationMultigrid
     }
 
     /// <summary>
+    /// For tests: the map of level <paramref name="level"/>'s rows into the coarse level's, as built (level 0 is the
+    /// first coarse level: the map from the particles into it; level l the map from level l - 1's aggregates).
+    /// </summary>
+    internal int[] AggregateMap(int level) => level == 0 ? _aggregate : _levels[level - 1].NextAggregate;
+
+    /// <summary>
+    /// For tests: coarse level <paramref name="level"/>'s operator as a dense row-major matrix of 3 Count values a
+    /// side, read from its blocks as the sweeps read them (a block left of the diagonal transposed from its mirror).
+    /// </summary>
+    internal double[] DenseOperator(int level) => _levels[level].Dense();
+
+    /// <summary>
     /// Rebuilds the hierarchy if the couplings changed, then the coarse operators from the system's current
-    /// linearisation: <paramref name="fineDiagonal"/> holds J_ii (9 values per particle, before inversion).
+    /// linearisation: <paramref name="fineDiagonal"/> holds J_ii (9 values per particle, as the forces added them).
     /// </summary>
     public void Setup(ILinearizableSystem system, double[] fineDiagonal, Span<double> masses, Span<double> inverseMasses, IParallelRunner? runner)
     {
@@ -789,8 +801,9 @@ internal sealed unsafe class AggregationMultigrid
     }
 
     /// <summary>
-    /// One coarse level: diagonal and off-diagonal 3 x 3 blocks (compressed rows, both directions, columns
-    /// increasing), the inverted diagonal, the right-hand side B and solution X of its cycle, and its link to the next.
+    /// One coarse level: diagonal and off-diagonal 3 x 3 blocks (compressed rows with both directions of every pair in
+    /// its sparsity, columns increasing; each pair's block stored once), the inverted diagonal, the right-hand side B
+    /// and solution X of its cycle, and its link to the next.
     /// </summary>
     /// <remarks>
     /// The operator is symmetric, A_ji = A_ij^T, so each pair's block is stored once, in the row of the smaller
@@ -1146,19 +1159,21 @@ internal sealed unsafe class AggregationMultigrid
             Chunk.RunAll(Count >= ParallelRows ? runner : null, this, Chunks); // small levels stay on the calling thread
         }
 
-        /// <summary>Factorises the dense operator of a small level (Cholesky); block Jacobi if it is large or not positive definite.</summary>
-        public void FactorDense()
-        {
-            _denseValid = false;
-            if (Count > CoarsestNodes)
-            {
-                return;
-            }
+        /// <summary>The map of this level's rows into the next level's aggregates (empty on the coarsest).</summary>
+        public int[] NextAggregate => _nextAggregate;
 
+        /// <summary>The operator as a dense row-major matrix, 3 Count values a side (for tests: it allocates).</summary>
+        public double[] Dense()
+        {
             var n = 3 * Count;
-            _dense ??= new double[n * n];
-            var a = _dense;
-            Array.Clear(a, 0, a.Length);
+            var a = new double[n * n];
+            FillDense(a, n);
+            return a;
+        }
+
+        /// <summary>Writes the operator into <paramref name="a"/>, dense and row-major with <paramref name="n"/> = 3 Count.</summary>
+        private void FillDense(double[] a, int n)
+        {
             for (var i = 0; i < Count; i++)
             {
                 for (var p = 0; p < 3; p++)
@@ -1183,6 +1198,22 @@ internal sealed unsafe class AggregationMultigrid
                     }
                 }
             }
+        }
+
+        /// <summary>Factorises the dense operator of a small level (Cholesky); block Jacobi if it is large or not positive definite.</summary>
+        public void FactorDense()
+        {
+            _denseValid = false;
+            if (Count > CoarsestNodes)
+            {
+                return;
+            }
+
+            var n = 3 * Count;
+            _dense ??= new double[n * n];
+            var a = _dense;
+            Array.Clear(a, 0, a.Length);
+            FillDense(a, n);
 
             // In-place Cholesky, lower triangle: A = L L^T.
             for (var j = 0; j < n; j++)

@@ -12,10 +12,10 @@ namespace ParticlePhysics.Integrators;
 /// <remarks>
 /// The vectors, 3 values per particle: b the right-hand side, dv the solution, r = b - A dv the residual, z = P r the
 /// preconditioned residual, p the search direction and s = A p; jw receives the system's J times a vector, and the
-/// passes that read it leave it 0 for the next product (no pass of its own clears it). w = A z = M z - J z is never
-/// stored: the pass after the product sums z . w from z and jw, and the update, which needs w once, computes it again
-/// from the same two (the same operations, so the same bits as a stored w), which saves writing and re-reading a
-/// vector every iteration; the blocks (9 values
+/// pass that reads it last leaves it 0 for the next product (no pass of its own clears it). w = A z = M z - J z is
+/// never stored: the pass after the product sums z . w from z and jw (and leaves jw), and the update, which needs w
+/// once, computes it again from the same two (the same operations, so the same bits as a stored w) and clears jw,
+/// which saves writing and re-reading a vector every iteration; the blocks (9 values
 /// per particle) are J_ii, and <see cref="InvertBlocks"/> writes D_i^-1 = (M_i - J_ii)^-1 into the inverses, 6 values
 /// per particle: the matrix is symmetric, so its upper triangle xx, xy, xz, yy, yz, zz is all of it, and the passes
 /// that apply it every iteration read two thirds of the bytes. A pinned particle's components are 0 in every vector
@@ -100,7 +100,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     /// </summary>
     public double[] Inverses => _inverses;
 
-    /// <summary>This step's masses, a copy the passes own.</summary>
+    /// <summary>This step's masses, a copy the passes own (0 for pinned particles).</summary>
     public double[] Masses => _masses;
 
     /// <summary>This step's inverse masses (0 for pinned particles), a copy the passes own.</summary>
@@ -116,7 +116,8 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         double[] b, double[] dv, double[] r, double[] p, double[] s, double[] z, double[] jw, double[] blocks,
         Span<double> masses, Span<double> inverseMasses, IParallelRunner? runner)
     {
-        // Every pass runs its pointers over 3 values per particle (9 for the blocks): checked here, where they are bound.
+        // Every pass runs its pointers over 3 values per particle (9 for the blocks, 6 for the inverses the passes own):
+        // checked here, where they are bound.
         var n = 3L * masses.Length;
         if (inverseMasses.Length != masses.Length || b.Length < n || dv.Length < n || r.Length < n || p.Length < n
             || s.Length < n || z.Length < n || jw.Length < n || blocks.Length < 3 * n)
@@ -132,8 +133,15 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
             _inverses = new double[6 * masses.Length];
         }
 
-        masses.CopyTo(_masses);
+        // A pinned particle's mass is 0 in the passes' copy: the update computes w = M z - jw on every particle, and a
+        // system may report a pinned particle's mass as infinite (infinity times z = 0 would be NaN there). No pass
+        // reads a pinned particle's mass otherwise.
         inverseMasses.CopyTo(_inverseMasses);
+        for (var i = 0; i < masses.Length; i++)
+        {
+            _masses[i] = inverseMasses[i] == 0.0 ? 0.0 : masses[i];
+        }
+
         B = b;
         Dv = dv;
         R = r;
@@ -238,9 +246,15 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
             (_startVectors[0], _startVectors[1], _startVectors[2], _startVectors[3]) = ((IntPtr)u0, (IntPtr)u1, (IntPtr)u2, (IntPtr)u3);
             (_startProducts[0], _startProducts[1], _startProducts[2], _startProducts[3]) = ((IntPtr)q0, (IntPtr)q1, (IntPtr)q2, (IntPtr)q3);
             _startCount = count;
-            _ = Run(operation);
-            Array.Clear(_startVectors, 0, _startVectors.Length);
-            Array.Clear(_startProducts, 0, _startProducts.Length);
+            try
+            {
+                _ = Run(operation);
+            }
+            finally
+            {
+                Array.Clear(_startVectors, 0, _startVectors.Length); // no address outlives its pinning
+                Array.Clear(_startProducts, 0, _startProducts.Length);
+            }
         }
     }
 

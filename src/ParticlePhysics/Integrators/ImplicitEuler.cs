@@ -202,8 +202,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         system.AccumulateForcesAndLinearize(end, x0, v0, h * h, h, UserForces, jw, blocks).CopyTo(f0);
         CheckFinite(f0, inverseMasses, time, end, "the force on particle {0} is {1}: a force generator wrote a value that is not finite");
 
-        // b = h (f0 + h K v0), filtered; the multigrid's coarse levels from the same linearisation (before the blocks
-        // are inverted); block Jacobi P = inverse of the blocks of M - (h D + h^2 K).
+        // b = h (f0 + h K v0), filtered; the multigrid's coarse levels from the same linearisation (from the blocks
+        // J_ii, which the inversion leaves as they are); block Jacobi P = inverse of the blocks of M - (h D + h^2 K).
         var passes = _passes ??= new ConjugateGradientPasses();
         passes.Bind(b, dv, r, p, s, z, jw, blocks, masses, inverseMasses, runner);
         var rhsNorm = Math.Sqrt(passes.RightHandSide(f0, h));
@@ -231,9 +231,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         // the Galerkin conditions u_j . (b - sum c_a q_a) = 0 (one pass for the sums, a 4 x 4 solve; fewer steps when
         // the system is singular, the extrapolation when none is left). Measured (docs/benchmarks.md, "The warm
         // start from the last four steps"): on the 64 x 64 cloth's first second, 7.10 iterations per frame at 1e-3
-        // with the last two steps
-        // (7.55 with the extrapolation), 6.83 with four, and 20.98 and 17.10 at 1e-6; over ten cases 6038
-        // iterations with two, 5429 with four. Under block Jacobi the plane of two took 15 % more (the energy it removes is in the
+        // with the last two steps (7.55 with the extrapolation), 6.83 with four, and 20.98 and 17.10 at 1e-6; over ten
+        // cases 6038 iterations with two, 5433 with four. Under block Jacobi the plane of two took 15 % more (the energy it removes is in the
         // stiff components, which block Jacobi damps anyway), hence not there.
         // Pinned components are always 0. The committed warm start is only read here: a step that fails leaves it as
         // it was (CommitStep moves dv and its product in).
@@ -329,7 +328,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
             throw Diverged(time, end, 0, residualNorm, "the implicit solve's residual is not finite");
         }
 
-        var pendingKnown = Math.Min(WarmStartHistory.Depth, known + 1);
+        // Block Jacobi reads only the last two steps' dv (their extrapolation), so only the multigrid's steps keep more.
+        var pendingKnown = Math.Min(keepProduct ? WarmStartHistory.Depth : 2, known + 1);
         _history.SetPending(pendingKnown, keepProduct ? Math.Min(pendingKnown, knownProducts + 1) : 0);
         if (keepProduct)
         {
@@ -371,7 +371,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
 
     /// <summary>
     /// Solves the leading m x m block of the Gram matrix (row stride <paramref name="stride"/>) against the
-    /// projections; false when a pivot is at most 1e-12 of the block's largest entry or a coefficient is not finite.
+    /// projections; false when a pivot is at most 1e-12 of the block's largest entry, when m = 1 and u . q is not
+    /// positive, or when a coefficient is not finite.
     /// </summary>
     private bool SolveGalerkin(int m, int stride)
     {
@@ -400,7 +401,9 @@ public sealed class ImplicitEuler : IStatefulIntegrator
                 }
             }
 
-            if (!(Math.Abs(e[(pivot * width) + column]) > 1e-12 * scale))
+            // (One step alone: u . q ~ u . A u must be positive, A being positive definite, else its product is not
+            // to be trusted.)
+            if (!(Math.Abs(e[(pivot * width) + column]) > 1e-12 * scale) || (m == 1 && !(e[0] > 0.0)))
             {
                 return false;
             }
@@ -491,7 +494,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     private double ApplySystemMatrix(ILinearizableSystem system, ConjugateGradientPasses passes, double time, double end)
     {
         // jw is 0 here: every pass that reads it last (the right-hand side, the residual, the update that takes
-        // w = M z - jw) clears it as it goes, so no separate pass clears it before each product.
+        // w = M z - jw) clears it as it goes, so no separate pass clears it before each product. (A solve that ends
+        // on delta <= 0 right after this product leaves it J z; the next step clears it at its start.)
         system.AddJacobianProduct(passes.Z, passes.JacobianProduct);
         var zw = passes.MassMinusJacobian();
         if (!DoubleChecks.IsFinite(zw))
