@@ -2,8 +2,9 @@
 # Two libraries in one process, round by round: the library of commit A and the working tree's (B), each with the
 # shim in-process/Shim.cs compiled against it and loaded into its own AssemblyLoadContext by in-process/Host.cs,
 # alternating every simulated second. Against run.sh's alternating processes, both sides here see the same machine
-# from one round to the next, so the per-round ratios scatter far less on a loaded host (quartiles within 3 to 5 %
-# where run.sh's pairs spread 0.47 to 0.95). A defaults to the library issue 13 measured (0.19 s on its machine), so
+# from one round to the next, so the per-round ratios scatter far less on a loaded host (against the issue's library,
+# quartiles 0.60 to 0.66 in one run of 40 rounds, where run.sh's pairs spread 0.44 to 0.69 in one run of 8). A
+# defaults to the library issue 13 measured (0.19 s on its machine), so
 # 0.19 s x the median ratio is the working tree's time there. Needs git history, the .NET SDK, sed and tar.
 #   in-process.sh [rounds] [tolerance B] [tolerance A] [n]     defaults: 40 rounds, 1e-3, 1e-3, 64
 #   A=<commit> in-process.sh ...    another library for A;  B=<commit> in-process.sh ...  a commit instead of the working tree

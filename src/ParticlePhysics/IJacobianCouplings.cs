@@ -26,9 +26,11 @@ public interface IJacobianCouplings : IForceJacobian
 
     /// <summary>
     /// Adds the blocks of the last linearisation into a caller's block matrix (assembly by a local-to-global map):
-    /// for each coupling c with <c>forwardBlock[c] &gt;= 0</c>, J_ij (i = first, j = second) into the 3 x 3 block
-    /// that starts at <c>destination[9 forwardBlock[c]]</c> and J_ji = J_ij^T into the one at
-    /// <c>destination[9 backwardBlock[c]]</c> (row-major; both may be the same block). A negative index skips that block.
+    /// for each coupling c, J_ij (i = first, j = second) into the 3 x 3 block that starts at
+    /// <c>destination[9 forwardBlock[c]]</c> when <c>forwardBlock[c] &gt;= 0</c>, and J_ji = J_ij^T into the one at
+    /// <c>destination[9 backwardBlock[c]]</c> when <c>backwardBlock[c] &gt;= 0</c> (row-major; both may be the same
+    /// block). Each index is tested on its own: a negative one skips its block only (the multigrid stores a symmetric
+    /// pair's block once, and names only one of the two for most couplings).
     /// Each block receives its couplings in increasing order, and nothing outside the named blocks is written, so calls
     /// whose named blocks do not overlap may run at the same time (the preconditioner assembles in parallel that way).
     /// </summary>
