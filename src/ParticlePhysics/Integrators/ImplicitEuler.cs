@@ -39,7 +39,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     private readonly double[] _startCoefficients = new double[WarmStartHistory.Depth];
     private readonly double[] _gram = new double[WarmStartHistory.Depth * WarmStartHistory.Depth];
     private readonly double[] _projections = new double[WarmStartHistory.Depth];
-    private readonly double[] _elimination = new double[WarmStartHistory.Depth * (WarmStartHistory.Depth + 1)];
+    private readonly double[] _elimination = new double[WarmStartHistory.Depth * WarmStartHistory.Depth];
+    private readonly int[] _eliminationPivots = new int[WarmStartHistory.Depth];
 
     // Particle-system path: 3 N values each, except the 9 N preconditioner blocks.
     private double[]? _force;
@@ -232,8 +233,8 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         // the system is singular, the extrapolation when none is left). Measured (docs/benchmarks.md, "The warm
         // start from the last four steps"): on the 64 x 64 cloth's first second, 7.10 iterations per frame at 1e-3
         // with the last two steps (7.55 with the extrapolation), 6.83 with four, and 20.98 and 17.10 at 1e-6; over ten
-        // cases 6038 iterations with two, 5433 with four. Under block Jacobi the plane of two took 15 % more (the energy it removes is in the
-        // stiff components, which block Jacobi damps anyway), hence not there.
+        // cases 6038 iterations with two, 5433 with four. Under block Jacobi the plane of two took 15 % more (the
+        // energy it removes is in the stiff components, which block Jacobi damps anyway), hence not there.
         // Pinned components are always 0. The committed warm start is only read here: a step that fails leaves it as
         // it was (CommitStep moves dv and its product in).
         var known = WarmStart && _history.Length == n ? _history.Known : 0;
@@ -371,67 +372,31 @@ public sealed class ImplicitEuler : IStatefulIntegrator
 
     /// <summary>
     /// Solves the leading m x m block of the Gram matrix (row stride <paramref name="stride"/>) against the
-    /// projections; false when a pivot is at most 1e-12 of the block's largest entry, when m = 1 and u . q is not
-    /// positive, or when a coefficient is not finite.
+    /// projections into <see cref="_startCoefficients"/>, by <see cref="LuSolve"/>; false when a pivot is at most 1e-12
+    /// of the block's largest entry, when m = 1 and u . q is not positive (u . q ~ u . A u must be, A being positive
+    /// definite, else the product is not to be trusted), or when a coefficient is not finite.
     /// </summary>
     private bool SolveGalerkin(int m, int stride)
     {
-        var e = _elimination; // m rows of m + 1: [G | u . b]
-        var width = m + 1;
         var scale = 0.0;
         for (var i = 0; i < m; i++)
         {
             for (var j = 0; j < m; j++)
             {
-                e[(i * width) + j] = _gram[(i * stride) + j];
-                scale = Math.Max(scale, Math.Abs(e[(i * width) + j]));
+                _elimination[(i * m) + j] = _gram[(i * stride) + j];
+                scale = Math.Max(scale, Math.Abs(_gram[(i * stride) + j]));
             }
 
-            e[(i * width) + m] = _projections[i];
+            _startCoefficients[i] = _projections[i];
         }
 
-        for (var column = 0; column < m; column++)
+        if ((m == 1 && !(_elimination[0] > 0.0)) || !LuSolve(_elimination, _eliminationPivots, _startCoefficients, m, 1e-12 * scale))
         {
-            var pivot = column;
-            for (var i = column + 1; i < m; i++)
-            {
-                if (Math.Abs(e[(i * width) + column]) > Math.Abs(e[(pivot * width) + column]))
-                {
-                    pivot = i;
-                }
-            }
-
-            // (One step alone: u . q ~ u . A u must be positive, A being positive definite, else its product is not
-            // to be trusted.)
-            if (!(Math.Abs(e[(pivot * width) + column]) > 1e-12 * scale) || (m == 1 && !(e[0] > 0.0)))
-            {
-                return false;
-            }
-
-            for (var j = 0; j < width; j++)
-            {
-                (e[(column * width) + j], e[(pivot * width) + j]) = (e[(pivot * width) + j], e[(column * width) + j]);
-            }
-
-            for (var i = column + 1; i < m; i++)
-            {
-                var factor = e[(i * width) + column] / e[(column * width) + column];
-                for (var j = column; j < width; j++)
-                {
-                    e[(i * width) + j] -= factor * e[(column * width) + j];
-                }
-            }
+            return false;
         }
 
-        for (var i = m - 1; i >= 0; i--)
+        for (var i = 0; i < m; i++)
         {
-            var sum = e[(i * width) + m];
-            for (var j = i + 1; j < m; j++)
-            {
-                sum -= e[(i * width) + j] * _startCoefficients[j];
-            }
-
-            _startCoefficients[i] = sum / e[(i * width) + i];
             if (!DoubleChecks.IsFinite(_startCoefficients[i]))
             {
                 return false;
@@ -569,8 +534,11 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         y.AsSpan().CopyTo(next);
     }
 
-    /// <summary>Solves A x = b in place (A n x n row-major, overwritten by its LU factors; b becomes x). False if singular.</summary>
-    private static bool LuSolve(double[] a, int[] pivots, double[] b, int n)
+    /// <summary>
+    /// Solves A x = b in place by Gaussian elimination with partial pivoting (A n x n row-major, overwritten by its LU
+    /// factors; b becomes x). False if a pivot's magnitude is at most <paramref name="smallestPivot"/> (0: singular).
+    /// </summary>
+    private static bool LuSolve(double[] a, int[] pivots, double[] b, int n, double smallestPivot = 0.0)
     {
         for (var col = 0; col < n; col++)
         {
@@ -583,7 +551,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
                 }
             }
 
-            if (a[(pivot * n) + col] == 0.0)
+            if (Math.Abs(a[(pivot * n) + col]) <= smallestPivot)
             {
                 return false;
             }
