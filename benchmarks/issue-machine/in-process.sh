@@ -20,49 +20,16 @@ tolerance_a=${3:-1e-3}
 n=${4:-64}
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-side() { # side NAME COMMIT-or-empty: builds the shim against that library into $work/NAME-bin
-  local name=$1 commit=$2 lib
-  if [ -n "$commit" ]; then
-    mkdir -p "$work/$name-src"
-    git -C "$root" archive "$commit" src Directory.Build.props Directory.Packages.props global.json nuget.config .editorconfig \
-      | tar -x -C "$work/$name-src"
-    lib="$work/$name-src/src/ParticlePhysics/ParticlePhysics.csproj"
-  else
-    lib="$root/src/ParticlePhysics/ParticlePhysics.csproj"
-  fi
-  mkdir -p "$work/$name"
-  cp "$here/in-process/Shim.cs" "$work/$name/"
-  cat > "$work/$name/Shim.csproj" <<PROJ
-<Project Sdk="Microsoft.NET.Sdk">
-  <PropertyGroup>
-    <TargetFramework>net10.0</TargetFramework>
-    <Nullable>enable</Nullable>
-    <NuGetAudit>false</NuGetAudit>
-  </PropertyGroup>
-  <ItemGroup>
-    <ProjectReference Include="$lib" />
-  </ItemGroup>
-</Project>
-PROJ
-  dotnet build -c Release -v q -nologo "$work/$name" -o "$work/$name-bin" > "$work/$name.log" 2>&1 || { cat "$work/$name.log"; exit 1; }
-}
-side a "$A"
-side b "$B"
-mkdir -p "$work/host"
-cp "$here/in-process/Host.cs" "$work/host/"
-cat > "$work/host/Host.csproj" <<'PROJ'
-<Project Sdk="Microsoft.NET.Sdk">
-  <PropertyGroup>
-    <OutputType>Exe</OutputType>
-    <TargetFramework>net10.0</TargetFramework>
-    <Nullable>enable</Nullable>
-    <NuGetAudit>false</NuGetAudit>
-  </PropertyGroup>
-</Project>
-PROJ
-dotnet build -c Release -v q -nologo "$work/host" -o "$work/host-bin" > "$work/host.log" 2>&1 || { cat "$work/host.log"; exit 1; }
+# shellcheck source=build.sh
+. "$here/build.sh"
+# Each side's shim is the assembly Shim, which Host.cs loads from the side's folder.
+library_a=$(library_project a "$A")
+library_b=$(library_project b "$B")
+build_program a Library "$library_a" "$here/in-process/Shim.cs" Shim
+build_program b Library "$library_b" "$here/in-process/Shim.cs" Shim
+build_program Host Exe "" "$here/in-process/Host.cs"
 echo "A: ${A}, B: ${B:-the working tree}; $rounds rounds of one simulated second each, $n x $n cloth; load $(cut -d' ' -f1-3 /proc/loadavg)"
-dotnet "$work/host-bin/Host.dll" "$work/a-bin" "$work/b-bin" "$rounds" "$tolerance_a" "$tolerance_b" "$n" | tee "$work/out.txt"
+dotnet "$work/Host-bin/Host.dll" "$work/a-bin" "$work/b-bin" "$rounds" "$tolerance_a" "$tolerance_b" "$n" | tee "$work/out.txt"
 median=$(sed -n 's/.*median \([0-9.]*\),.*/\1/p' "$work/out.txt" | tail -1)
 if [ "$A" = "460bc80^" ] && [ "$tolerance_a" = 1e-3 ] && [ "$tolerance_b" = 1e-3 ] && [ "$n" = 64 ]; then
   python3 -c "print(f'on the issue\'s machine (0.19 s there for A): B about {0.19 * $median:.3f} s per simulated second')"

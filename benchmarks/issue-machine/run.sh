@@ -15,34 +15,17 @@ pairs=${1:-4}
 rounds=${2:-7}
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-mkdir -p "$work/then"
-git -C "$root" archive "$THEN" src Directory.Build.props Directory.Packages.props global.json nuget.config .editorconfig \
-  | tar -x -C "$work/then"
-for side in then now; do
-  lib="$work/then/src/ParticlePhysics/ParticlePhysics.csproj"
-  [ "$side" = now ] && lib="$root/src/ParticlePhysics/ParticlePhysics.csproj"
-  mkdir -p "$work/$side-app"
-  cp "$here/Program.cs" "$work/$side-app/"
-  cat > "$work/$side-app/IssueMachine.csproj" <<PROJ
-<Project Sdk="Microsoft.NET.Sdk">
-  <PropertyGroup>
-    <OutputType>Exe</OutputType>
-    <TargetFramework>net10.0</TargetFramework>
-    <Nullable>enable</Nullable>
-    <NuGetAudit>false</NuGetAudit>
-  </PropertyGroup>
-  <ItemGroup>
-    <ProjectReference Include="$lib" />
-  </ItemGroup>
-</Project>
-PROJ
-  dotnet build -c Release -v q -nologo "$work/$side-app" > "$work/$side-build.log" 2>&1 || { cat "$work/$side-build.log"; exit 1; }
-done
+# shellcheck source=build.sh
+. "$here/build.sh"
+then_library=$(library_project then "$THEN")
+now_library=$(library_project now "")
+build_program then-app Exe "$then_library" "$here/Program.cs"
+build_program now-app Exe "$now_library" "$here/Program.cs"
 thens=()
 nows=()
 for ((i = 1; i <= pairs; i++)); do
-  then_line=$(LABEL="then ($THEN)" dotnet "$work/then-app/bin/Release/net10.0/IssueMachine.dll" "$rounds")
-  now_line=$(LABEL="now" dotnet "$work/now-app/bin/Release/net10.0/IssueMachine.dll" "$rounds")
+  then_line=$(LABEL="then ($THEN)" dotnet "$work/then-app-bin/then-app.dll" "$rounds")
+  now_line=$(LABEL="now" dotnet "$work/now-app-bin/now-app.dll" "$rounds")
   echo "$then_line"
   echo "$now_line"
   t=$(sed -E 's/.*fastest ([0-9.]+) ms.*/\1/' <<< "$then_line")
