@@ -4,15 +4,15 @@ using ParticlePhysics.Parallel;
 namespace ParticlePhysics.Forces;
 
 /// <summary>
-/// The spring network's linearisation and Jacobian products over several threads, bit-identical to the sequential
-/// loops (as <see cref="ParallelSpringForces"/> is for forces): each spring's 3-vector goes into its own slot, then
-/// each particle gathers its springs' slots in increasing spring order (<see cref="SpringIncidence"/>). Diagonal
-/// blocks need no slots: each particle adds its springs' blocks itself, in the same order.
+/// The spring network's linearisation over several threads, bit-identical to the sequential loops (as
+/// <see cref="ParallelSpringForces"/> is for forces): each spring's 3-vectors go into their own slots, then each
+/// particle gathers its springs' slots in increasing spring order (<see cref="SpringIncidence"/>). Diagonal blocks
+/// need no slots: each particle adds its springs' blocks itself, in the same order. (The Jacobian product, run every
+/// iteration, has a pass of its own without slots: <see cref="SpringJacobianProduct"/>.)
 /// </summary>
 internal sealed unsafe class ParallelSpringJacobian
 {
     private readonly LinearizePass _linearize = new();
-    private readonly ProductPass _product = new();
     private readonly BlocksPass _blocks = new();
     private readonly LinearizeWithForcesPass _linearizeWithForces = new();
     private readonly GatherAllPass _gatherAll = new();
@@ -57,18 +57,6 @@ internal sealed unsafe class ParallelSpringJacobian
             runner.Run(_linearizeWithForces, chunks);
             _gatherAll.Set(forces, into, blocks, forceSlots, slots, linear, start, incident, incidence.Start.Length - 1);
             runner.Run(_gatherAll, chunks);
-        }
-    }
-
-    public void Product(double* w, double* y, double* linear, int* first, int* second, int count, SpringIncidence incidence, IParallelRunner runner)
-    {
-        EnsureSlots(count);
-        var chunks = 4 * runner.MaxParallelism;
-        fixed (double* slots = _perSpring)
-        {
-            _product.Set(w, linear, first, second, count, slots);
-            runner.Run(_product, chunks);
-            incidence.Gather(y, slots, firstEndAdds: true, runner, chunks);
         }
     }
 
@@ -254,36 +242,6 @@ internal sealed unsafe class ParallelSpringJacobian
             }
 
             SpringLinearization.GatherBlocks(_blocks, _linear, _start, _incident, begin, end);
-        }
-    }
-
-    private sealed class ProductPass : IParallelWork
-    {
-        private double* _w;
-        private double* _linear;
-        private int* _first;
-        private int* _second;
-        private int _count;
-        private double* _slots;
-
-        public void Set(double* w, double* linear, int* first, int* second, int count, double* slots)
-        {
-            _w = w;
-            _linear = linear;
-            _first = first;
-            _second = second;
-            _count = count;
-            _slots = slots;
-        }
-
-        public void Execute(int chunk, int chunkCount)
-        {
-            var (begin, end) = Chunk.Range(chunk, chunkCount, _count);
-            for (var s = begin; s < end; s++)
-            {
-                var y = _slots + (3 * s);
-                SpringLinearization.Product(_w, 3L * _first[s], 3L * _second[s], _linear + (5 * s), y);
-            }
         }
     }
 

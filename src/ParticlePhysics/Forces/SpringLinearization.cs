@@ -107,19 +107,6 @@ internal static unsafe class SpringLinearization
         force[2] = magnitude * uz;
     }
 
-    /// <summary>(s I + t u u^T)(w_a - w_b): the spring's share of J w at end a (end b gets its opposite).</summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public static void Product(double* w, long a, long b, double* linear, double* y)
-    {
-        double* wa = w + a, wb = w + b;
-        double dx = wa[0] - wb[0], dy = wa[1] - wb[1], dz = wa[2] - wb[2];
-        double ux = linear[0], uy = linear[1], uz = linear[2], iso = linear[3];
-        var axial = linear[4] * ((ux * dx) + (uy * dy) + (uz * dz));
-        y[0] = (iso * dx) + (axial * ux);
-        y[1] = (iso * dy) + (axial * uy);
-        y[2] = (iso * dz) + (axial * uz);
-    }
-
     /// <summary>
     /// Adds into the diagonal block of each particle in [begin, end) the blocks s I + t u u^T of its springs, in
     /// increasing spring order (<see cref="SpringIncidence"/>'s rows), summed in locals and stored once: the same

@@ -40,6 +40,14 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     private int _topologyVersion;
     private int _parameterVersion;
     private ParallelSpringJacobian? _jacobian;
+    private SpringJacobianProduct? _product;
+    private SpringJacobianProduct? _parallelProduct;
+
+    /// <summary>For tests: the product's parts on the last runner it ran on (null before).</summary>
+    internal SpringJacobianProduct? ParallelProduct => _parallelProduct;
+
+    // The product's parts per thread of a runner: two, so that a thread that finishes early takes another part.
+    private const int ProductPartsPerThread = 2;
     private IParallelRunner? _runner; // the runner of the last Linearize, for the products that use it
 
     /// <summary>An empty network for the particles of <paramref name="system"/>.</summary>
@@ -487,53 +495,13 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         }
 
         // The hot loop of every conjugate-gradient iteration: pointers for the same reason as in AddForces; the
-        // linearisation covers exactly the Count springs (checked above).
+        // linearisation covers exactly the Count springs (checked above). On one thread one part, all the springs; on a
+        // runner each part of the particles sums its own springs' terms, with the same bits (SpringJacobianProduct).
         fixed (double* wp = &MemoryMarshal.GetReference(w), y = result, lin = _linear)
-        fixed (int* first = _pairs.First, second = _pairs.Second)
         {
-            if (_runner is not null && _jacobian is not null && _parallel is not null)
-            {
-                _jacobian.Product(wp, y, lin, first, second, _pairs.Count, _parallel.Incidence, _runner);
-            }
-            else
-            {
-                // The hot loop of every conjugate-gradient iteration, written out as SpringLinearization.Product, over
-                // runs of consecutive springs that share their first end (a cloth adds its springs particle by
-                // particle): that end's w is loaded once and its sum kept in registers until the run ends, instead of
-                // each spring's addition waiting for the store of the one before. The same additions in the same
-                // order (no spring of a run has the run's particle as its second end), so the same bits.
-                var count = _pairs.Count;
-                var s = 0;
-                while (s < count)
-                {
-                    long a = 3 * first[s];
-                    double* ya = y + a;
-                    double wax = wp[a], way = wp[a + 1], waz = wp[a + 2];
-                    double sx = ya[0], sy = ya[1], sz = ya[2];
-                    do
-                    {
-                        long b = 3 * second[s];
-                        double* wb = wp + b, yb = y + b;
-                        var q = lin + (LinearStride * s);
-                        double dx = wax - wb[0], dy = way - wb[1], dz = waz - wb[2];
-                        double ux = q[0], uy = q[1], uz = q[2], iso = q[3];
-                        var axial = q[4] * ((ux * dx) + (uy * dy) + (uz * dz));
-                        double yx = (iso * dx) + (axial * ux), yy = (iso * dy) + (axial * uy), yz = (iso * dz) + (axial * uz);
-                        sx += yx;
-                        sy += yy;
-                        sz += yz;
-                        yb[0] -= yx;
-                        yb[1] -= yy;
-                        yb[2] -= yz;
-                        s++;
-                    }
-                    while (s < count && 3L * first[s] == a);
-
-                    ya[0] = sx;
-                    ya[1] = sy;
-                    ya[2] = sz;
-                }
-            }
+            // (One instance for each, so that a host switching between a runner and none does not rebuild the parts.)
+            var product = _runner is null ? _product ??= new SpringJacobianProduct() : _parallelProduct ??= new SpringJacobianProduct();
+            product.Product(wp, y, lin, _pairs, _pairs.Count, _system.Count, _runner is null ? 1 : ProductPartsPerThread * _runner.MaxParallelism, _runner);
         }
 
         var anchoredLin = _anchoredLinear;
