@@ -117,10 +117,10 @@ internal sealed unsafe class AggregationMultigrid
         for (var l = 0; l < _levels.Length; l++)
         {
             var level = _levels[l];
-            level.Invert();
+            level.Invert(runner);
             if (l + 1 < _levels.Length)
             {
-                level.GalerkinInto(_levels[l + 1]);
+                level.GalerkinInto(_levels[l + 1], runner);
             }
             else
             {
@@ -816,6 +816,8 @@ internal sealed unsafe class AggregationMultigrid
     {
         private const int ResidualRestrictPass = 0;
         private const int PostSmoothPass = 1;
+        private const int InvertPass = 2;
+        private const int GalerkinPass = 3;
 
         // Below this many rows a level's passes stay on the calling thread: waking the workers would cost more. 256: at
         // the runner's 200 us spin limit the workers are awake between the cycle's passes, and on the 64 x 64 cloth
@@ -964,13 +966,19 @@ internal sealed unsafe class AggregationMultigrid
             }
         }
 
-        /// <summary>Inverts the diagonal blocks; a zero block (an aggregate of pinned particles only) becomes the identity.</summary>
-        public void Invert()
+        /// <summary>
+        /// Inverts the diagonal blocks, in one pass over the rows (on the runner for large levels); a zero block (an
+        /// aggregate of pinned particles only) becomes the identity.
+        /// </summary>
+        public void Invert(IParallelRunner? runner) => RunPass(InvertPass, Count, runner);
+
+        /// <summary>Rows [begin, end) of <see cref="Invert"/>.</summary>
+        private void InvertRows(int begin, int end)
         {
-            for (var i = 0; i < Count; i++)
+            var d = Values;
+            for (var i = begin; i < end; i++)
             {
                 var o = 9 * i;
-                var d = Values;
                 if (d[o] == 0.0 && d[o + 4] == 0.0 && d[o + 8] == 0.0)
                 {
                     d[o] = d[o + 4] = d[o + 8] = 1.0;
@@ -986,31 +994,51 @@ internal sealed unsafe class AggregationMultigrid
             }
         }
 
-        /// <summary>The next level's operator: every block of this one added where its row and column aggregates meet.</summary>
-        public void GalerkinInto(Level next)
+        /// <summary>
+        /// The next level's operator: every block of this one added where its row and column aggregates meet, in one pass
+        /// over the next level's aggregates (on the runner for large levels). Row i's blocks all land in the row of its
+        /// aggregate (its diagonal block, or a block right of it: a block whose aggregates are in decreasing order is
+        /// left to its mirror, which the next level stores), so each aggregate assembles its own row from its members'
+        /// rows, in increasing member order: every block gets its terms in increasing row order, as a loop over all the
+        /// rows gives them, whatever the chunks.
+        /// </summary>
+        public void GalerkinInto(Level next, IParallelRunner? runner)
         {
-            Array.Clear(next.Values, 0, next.Values.Length);
-            fixed (double* values = Values, nextValues = next.Values)
-            fixed (int* rowStart = _rowStart, split = _split, slot = _slot, aggregate = _nextAggregate, target = _nextTarget)
-            {
-                for (var i = 0; i < Count; i++)
-                {
-                    // Row i's blocks A_ij in column order, those left of the diagonal read transposed; a block whose
-                    // aggregates are in decreasing order (target -1) is left to its mirror, which the next level stores.
-                    Blocks3.Add(nextValues + (9L * aggregate[i]), values + (9L * i));
-                    for (var k = rowStart[i]; k < split[i]; k++)
-                    {
-                        if (target[k] >= 0)
-                        {
-                            Blocks3.AddTransposed(nextValues + (9L * target[k]), values + (9L * (Count + slot[k])));
-                        }
-                    }
+            _next = next;
+            RunPass(GalerkinPass, next.Count, runner);
+        }
 
-                    for (var k = split[i]; k < rowStart[i + 1]; k++)
+        /// <summary>Aggregates [begin, end) of the next level's operator (see <see cref="GalerkinInto"/>): their rows cleared, then summed.</summary>
+        private void GalerkinRows(int begin, int end, double* values, double* nextValues, int* rowStart, int* split, int* slot, int* start, int* members)
+        {
+            var next = _next!;
+            var (first, last) = next.BlockRange(begin, end);
+            new Span<double>(nextValues + (9L * first), 9 * (last - first)).Clear();
+            var (offFirst, offLast) = next.OffDiagonalRange(begin, end);
+            new Span<double>(nextValues + (9L * offFirst), 9 * (offLast - offFirst)).Clear();
+            fixed (int* target = _nextTarget)
+            {
+                for (var a = begin; a < end; a++)
+                {
+                    for (var m = start[a]; m < start[a + 1]; m++)
                     {
-                        if (target[k] >= 0)
+                        // Row i's blocks A_ij in column order, those left of the diagonal read transposed.
+                        var i = members[m];
+                        Blocks3.Add(nextValues + (9L * a), values + (9L * i));
+                        for (var k = rowStart[i]; k < split[i]; k++)
                         {
-                            Blocks3.Add(nextValues + (9L * target[k]), values + (9L * (Count + slot[k])));
+                            if (target[k] >= 0)
+                            {
+                                Blocks3.AddTransposed(nextValues + (9L * target[k]), values + (9L * (Count + slot[k])));
+                            }
+                        }
+
+                        for (var k = split[i]; k < rowStart[i + 1]; k++)
+                        {
+                            if (target[k] >= 0)
+                            {
+                                Blocks3.Add(nextValues + (9L * target[k]), values + (9L * (Count + slot[k])));
+                            }
                         }
                     }
                 }
@@ -1113,11 +1141,27 @@ internal sealed unsafe class AggregationMultigrid
         public void Execute(int chunk, int chunkCount)
         {
             var (begin, end) = Chunk.Range(chunk, chunkCount, _passCount);
+            if (_operation == InvertPass)
+            {
+                InvertRows(begin, end);
+                return;
+            }
+
             fixed (double* b = B, x = X, smoothed = _smoothed, inverse = Inverse, values = Values)
             fixed (int* rowStart = _rowStart, column = _column, split = _split, slot = _slot)
             fixed (double* nextB = _next!.B, nextX = _next.X, nextInverse = _next.Inverse)
             fixed (int* aggregate = _nextAggregate, start = _nextMemberStart, members = _nextMembers)
             {
+                if (_operation == GalerkinPass)
+                {
+                    fixed (double* nextValues = _next.Values)
+                    {
+                        GalerkinRows(begin, end, values, nextValues, rowStart, split, slot, start, members);
+                    }
+
+                    return;
+                }
+
                 if (_operation == PostSmoothPass)
                 {
                     for (var i = begin; i < end; i++)
