@@ -203,9 +203,12 @@ internal sealed unsafe class AggregationMultigrid
     /// <summary>
     /// One V-cycle on coarse level l, X ~ A_l^-1 B, from a level whose pre-smoothing from zero, X = D^-1 B, is done (the
     /// pass above it did it as it restricted): the residual restricted to the next level (and the next level's own
-    /// pre-smoothing) in one pass, the cycle below, the prolongation X += P X_next (three additions per row, on the
-    /// calling thread: cheaper than a hand-off), then the post-smoothing X += D^-1 (B - A X) in one pass. Level 1's
-    /// post-smoothing is left to <see cref="FinishApply"/>, which fuses it with the fine level.
+    /// pre-smoothing) in one pass, the cycle below, which ends with the prolongation X += P X_next, then the
+    /// post-smoothing X += D^-1 (B - A X) in one pass, which adds each row's new X to its members on the level above
+    /// (that level's prolongation: each row of the level above belongs to one aggregate, so the rows of a pass write
+    /// disjoint members). Below the coarsest level's solve the prolongation is a loop of its own on the calling thread
+    /// (three additions per row). Level 1's post-smoothing is left to <see cref="FinishApply"/>, which fuses it with
+    /// the fine level.
     /// </summary>
     private void Cycle(int l, IParallelRunner? runner)
     {
@@ -219,10 +222,14 @@ internal sealed unsafe class AggregationMultigrid
         var next = _levels[l + 1];
         level.RestrictResidual(next, smoothNext: l + 2 < _levels.Length, runner);
         Cycle(l + 1, runner);
-        level.Prolong(next);
+        if (l + 1 == _levels.Length - 1)
+        {
+            level.Prolong(next);
+        }
+
         if (l > 0)
         {
-            level.PostSmooth(next, runner);
+            level.PostSmooth(next, _levels[l - 1], runner);
         }
     }
 
@@ -836,6 +843,7 @@ internal sealed unsafe class AggregationMultigrid
         private int[] _nextMemberStart = Array.Empty<int>();
         private int[] _nextMembers = Array.Empty<int>();
         private Level? _next;
+        private Level? _above; // the level a post-smoothing prolongs into
         private bool _smoothNext;
         private int _operation;
         private int _passCount;
@@ -1073,11 +1081,17 @@ internal sealed unsafe class AggregationMultigrid
             }
         }
 
-        /// <summary>The post-smoothing sweep X + D^-1 (B - A X) after the prolongation, in one pass.</summary>
-        public void PostSmooth(Level next, IParallelRunner? runner)
+        /// <summary>
+        /// The post-smoothing sweep X + D^-1 (B - A X) after the prolongation, in one pass, with the prolongation into
+        /// the level above: each row's new X added to its members there (X_above += P X, the additions of
+        /// <see cref="Prolong"/>).
+        /// </summary>
+        public void PostSmooth(Level next, Level above, IParallelRunner? runner)
         {
             _next = next;
+            _above = above;
             RunPass(PostSmoothPass, Count, runner);
+            _above = null;
             SwapSmoothed();
         }
 
@@ -1164,9 +1178,22 @@ internal sealed unsafe class AggregationMultigrid
 
                 if (_operation == PostSmoothPass)
                 {
-                    for (var i = begin; i < end; i++)
+                    var above = _above!;
+                    fixed (double* aboveX = above.X)
+                    fixed (int* aboveStart = above._nextMemberStart, aboveMembers = above._nextMembers)
                     {
-                        PostSmoothRowCore(i, values, rowStart, column, split, slot, b, x, inverse, smoothed + (3L * i));
+                        for (var i = begin; i < end; i++)
+                        {
+                            var c = smoothed + (3L * i);
+                            PostSmoothRowCore(i, values, rowStart, column, split, slot, b, x, inverse, c);
+                            for (var m = aboveStart[i]; m < aboveStart[i + 1]; m++)
+                            {
+                                var xm = aboveX + (3L * aboveMembers[m]);
+                                xm[0] += c[0];
+                                xm[1] += c[1];
+                                xm[2] += c[2];
+                            }
+                        }
                     }
 
                     return;
