@@ -24,7 +24,7 @@ namespace ParticlePhysics;
 /// drive it along a path (a kinematic particle, see <see cref="MoveKinematic"/>). Stepping allocates nothing once
 /// the system and its integrator have been used once.
 /// </remarks>
-public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
+public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, ICouplingRevision
 {
     private readonly List<IForceGenerator> _forceGenerators = new();
     private readonly List<IConstraintSet> _constraintSets = new();
@@ -990,6 +990,25 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem
 
             return count;
         }
+    }
+
+    /// <inheritdoc />
+    /// <remarks>
+    /// The revision is the world's structure version, which every added or removed force and particle changes; the
+    /// forces are those of the last linearisation, as for <see cref="ILinearizableSystem.CouplingCount"/>.
+    /// </remarks>
+    bool ICouplingRevision.TryGetCouplingRevision(out int revision)
+    {
+        revision = _structureVersion;
+        for (var j = 0; j < _linearized.Count; j++)
+        {
+            if (_linearized[j] is IJacobianCouplings and not IAppendOnlyCouplings)
+            {
+                return false;
+            }
+        }
+
+        return true;
     }
 
     /// <inheritdoc />

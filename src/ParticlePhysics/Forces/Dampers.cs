@@ -7,7 +7,7 @@ namespace ParticlePhysics.Forces;
 /// They resist relative motion in every direction, dissipate energy, and conserve total momentum.
 /// Jacobian: df_i/dv_i = df_j/dv_j = -c I, df_i/dv_j = c I.
 /// </summary>
-public sealed class Dampers : IForceGenerator, IBoundForce, IJacobianCouplings
+public sealed class Dampers : IForceGenerator, IBoundForce, IJacobianCouplings, IAppendOnlyCouplings
 {
     private readonly ForceElements _pairs = new(1);
     private readonly ParticleWorld _system;

@@ -19,7 +19,7 @@ namespace ParticlePhysics.Forces;
 /// Choi and Ko 2002); the position derivative of the damping term, which is not symmetric and vanishes when the
 /// ends move together, is left out. Each linearised spring is stored as u and two scalars, s I + t u u^T.
 /// </remarks>
-public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundForce, IJacobianCouplings, IForceLinearization, ISpringElements
+public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundForce, IJacobianCouplings, IForceLinearization, ISpringElements, IAppendOnlyCouplings
 {
     // Pair parameters: k, L, c. Anchored parameters: ax, ay, az, k, L, c.
     private const int PairStride = 3;

@@ -9,7 +9,7 @@ namespace ParticlePhysics.Forces;
 /// (which makes the mass-spring-damper exactly solvable). Potential energy: k |x_i - x_j|^2 / 2 per spring.
 /// Jacobian: df_i/dx_i = -k I, df_i/dx_j = k I (constant, so implicit Euler is exact backward Euler for it).
 /// </summary>
-public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoundForce, IJacobianCouplings, ISpringElements
+public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoundForce, IJacobianCouplings, ISpringElements, IAppendOnlyCouplings
 {
     // Pair parameters: k. Anchored parameters: ax, ay, az, k.
     private readonly ForceElements _pairs = new(1);

@@ -44,6 +44,7 @@ internal sealed unsafe class AggregationMultigrid
     private int[] _checkFirst = Array.Empty<int>();
     private int[] _checkSecond = Array.Empty<int>();
     private int _couplings = -1;
+    private int? _revision; // the system's coupling revision when the couplings were last seen, if it has one
     private int _particles = -1;
 
     // Fine level: the aggregate of each particle, its members, and the block
@@ -102,11 +103,16 @@ internal sealed unsafe class AggregationMultigrid
                 $"The multigrid needs 9 diagonal values and one inverse mass per particle, for {particles} particles.");
         }
 
+        // The couplings are compared pair by pair unless the system can tell that they are the same (ICouplingRevision).
         var count = system.CouplingCount;
-        if (count != _couplings || particles != _particles || !SameCouplings(system, count))
+        var revised = system is ICouplingRevision r && r.TryGetCouplingRevision(out var revision) ? revision : (int?)null;
+        var unchanged = revised is not null && revised == _revision;
+        if (count != _couplings || particles != _particles || (!unchanged && !SameCouplings(system, count)))
         {
             Build(system, count, particles);
         }
+
+        _revision = revised;
 
         if (_levels.Length == 0)
         {

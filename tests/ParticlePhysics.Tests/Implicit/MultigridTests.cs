@@ -1,4 +1,6 @@
 using System;
+using System.Linq;
+using ParticlePhysics.Forces;
 using ParticlePhysics.Integrators;
 using ParticlePhysics.Parallel;
 using ParticlePhysics.Scenarios;
@@ -144,6 +146,51 @@ public class MultigridTests
         StateMetrics.Run(system, implicitEuler, Frame, 5);
         Assert.True(implicitEuler.LastConverged);
         Assert.NotEqual(held, system.GetPosition(corner));
+    }
+
+    [Fact]
+    public void Couplings_replaced_by_as_many_others_rebuild_the_aggregates()
+    {
+        // The world's springs swapped for the same springs in reverse order: as many couplings, in another order. The
+        // world tells the multigrid that its forces changed (ICouplingRevision), so the solver that stepped the old
+        // springs rebuilds its hierarchy and steps as a new solver does; one that kept its aggregates' targets, made
+        // for the old order, would add the blocks in the wrong places and step to other bits. Without warm starts, so
+        // that the two solvers differ only by their history of couplings.
+        var used = Cloth(24);
+        var fresh = Cloth(24);
+        var solver = new ImplicitEuler { WarmStart = false };
+        StateMetrics.Run(used, solver, Frame, 5);
+        fresh.SetState(used.State);
+        Reverse(used);
+        Reverse(fresh);
+        used.Step(solver, Frame);
+        fresh.Step(new ImplicitEuler { WarmStart = false }, Frame);
+        Assert.Equal(StateMetrics.BitHash(fresh.State), StateMetrics.BitHash(used.State));
+
+        // And the check is not vacuous: the reversed springs step to other bits than the original ones.
+        var original = Cloth(24);
+        StateMetrics.Run(original, new ImplicitEuler { WarmStart = false }, Frame, 5);
+        original.Step(new ImplicitEuler { WarmStart = false }, Frame);
+        Assert.NotEqual(StateMetrics.BitHash(original.State), StateMetrics.BitHash(used.State));
+    }
+
+    /// <summary>Replaces the world's spring network by the same springs added in reverse order.</summary>
+    private static void Reverse(ParticleWorld world)
+    {
+        var springs = (SpringNetwork)world.Forces.First(f => f is SpringNetwork);
+        var count = springs.Count;
+        var first = new int[count];
+        var second = new int[count];
+        var parameters = new double[3 * count];
+        springs.CopyPairs(first, second, parameters);
+        var reversed = new SpringNetwork(world);
+        for (var s = count - 1; s >= 0; s--)
+        {
+            reversed.Add(first[s], second[s], parameters[3 * s], parameters[(3 * s) + 1], parameters[(3 * s) + 2]);
+        }
+
+        Assert.True(world.RemoveForce(springs));
+        world.AddForce(reversed);
     }
 
     private static ParticleWorld Cloth(int n) => new ClothScenario { Resolution = 1.0 / (n - 1) }.Build();

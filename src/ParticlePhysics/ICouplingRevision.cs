@@ -1,0 +1,18 @@
+namespace ParticlePhysics;
+
+/// <summary>
+/// A linearisable system that can tell, without writing its couplings out, that they have not changed: the implicit
+/// stepper's multigrid otherwise compares them pair by pair at every step to know whether to rebuild its aggregates
+/// (two arrays of one int per coupling written and compared: 17 us per 60 Hz frame of the 64 x 64 cloth, on the
+/// calling thread).
+/// </summary>
+internal interface ICouplingRevision
+{
+    /// <summary>
+    /// True when every force that states couplings only ever appends them (<see cref="IAppendOnlyCouplings"/>), with
+    /// <paramref name="revision"/> a number that changes whenever the set of forces does: then the couplings are the
+    /// same as long as the revision and <see cref="ILinearizableSystem.CouplingCount"/> are. False when some force's
+    /// couplings may change in place (a user's <see cref="IJacobianCouplings"/>): compare them.
+    /// </summary>
+    bool TryGetCouplingRevision(out int revision);
+}
