@@ -163,7 +163,7 @@ internal sealed unsafe class ParallelSpringJacobian
                 {
                     SpringLinearization.PairWithForce(
                         _x, _v, 3L * _first[s], 3L * _second[s], _parameters + (3 * s), _positionScale, _velocityScale,
-                        roots + (2 * (s - begin)), _linear + (5 * s), _slots + (3 * s), _forceSlots + (3 * s));
+                        roots + (s - begin), _linear + (5 * s), _slots + (3 * s), _forceSlots + (3 * s));
                 }
             }
         }

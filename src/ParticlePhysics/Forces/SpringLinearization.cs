@@ -57,8 +57,8 @@ internal static unsafe class SpringLinearization
     /// <paramref name="linear"/>, df/dx (v_a - v_b) at end a into <paramref name="y"/>, and into
     /// <paramref name="force"/> the vector (k (l - L) + c (v_a - v_b) . u) u that the force loop subtracts at end a and
     /// adds at end b (zero when l = 0). Every value is computed by the same operations as in <see cref="Pair"/> and in
-    /// <see cref="SpringNetwork.AddForces"/>, so the bits are theirs. <paramref name="roots"/> holds the spring's l and
-    /// 1 / l as <see cref="SpringLengths.Compute"/> wrote them.
+    /// <see cref="SpringNetwork.AddForces"/>, so the bits are theirs. <paramref name="roots"/> points at the spring's l
+    /// in the block <see cref="SpringLengths.Compute"/> wrote, its 1 / l <see cref="SpringLengths.Block"/> values on.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static void PairWithForce(
@@ -84,7 +84,7 @@ internal static unsafe class SpringLinearization
             return;
         }
 
-        var inverse = roots[1];
+        var inverse = roots[SpringLengths.Block];
         var transverse = Math.Max(0.0, 1.0 - (restLength * inverse));
         double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
         linear[0] = ux;

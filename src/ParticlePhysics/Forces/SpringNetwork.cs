@@ -424,16 +424,16 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
                         double k = c[0], restLength = c[1], damping = c[2];
                         double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
                         double dvx = v[a] - v[b], dvy = v[a + 1] - v[b + 1], dvz = v[a + 2] - v[b + 2];
-                        var length = roots[2 * (s - begin)];
+                        var length = roots[s - begin];
                         double yx, yy, yz, fx, fy, fz;
                         if (length == 0.0)
                         {
-                            SpringLinearization.PairWithForce(x, v, a, b, c, positionScale, velocityScale, roots + (2 * (s - begin)), q, y, y + 3);
+                            SpringLinearization.PairWithForce(x, v, a, b, c, positionScale, velocityScale, roots + (s - begin), q, y, y + 3);
                             (yx, yy, yz, fx, fy, fz) = (y[0], y[1], y[2], y[3], y[4], y[5]);
                         }
                         else
                         {
-                            var inverse = roots[(2 * (s - begin)) + 1];
+                            var inverse = roots[SpringLengths.Block + (s - begin)];
                             var transverse = Math.Max(0.0, 1.0 - (restLength * inverse));
                             double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
                             var iso = k * transverse;
