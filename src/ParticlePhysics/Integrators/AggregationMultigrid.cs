@@ -59,6 +59,7 @@ internal sealed unsafe class AggregationMultigrid
     private int[] _aggregate = Array.Empty<int>();
     private int[] _memberStart = Array.Empty<int>();
     private int[] _members = Array.Empty<int>();
+    private int[] _chunkMembers = Array.Empty<int>(); // per fine chunk: [first, end) of its members when contiguous, else -1, -1
     private int[] _forwardTarget = Array.Empty<int>();
     private int[] _backwardTarget = Array.Empty<int>();
     private Level[] _levels = Array.Empty<Level>();
@@ -145,11 +146,12 @@ internal sealed unsafe class AggregationMultigrid
     {
         var first = CheckBound(cg);
         fixed (double* r = cg.R, z = cg.Z, dv = cg.Dv, p = cg.P, s = cg.S, jw = cg.JacobianProduct, inv = cg.Inverses, masses = cg.Masses, inverseMasses = cg.InverseMasses)
-        fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members)
-        fixed (double* coarseB = first.B, coarseX = first.X, coarseInverse = first.Inverse)
+        fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members, chunkMembers = _chunkMembers)
+        fixed (double* coarseB = first.B, coarseX = first.X, coarseInverse = first.Inverse, coordinateMasses = cg.CoordinateMasses)
         {
             _fine.Set(r, z, dv, p, s, jw, inv, masses, inverseMasses, aggregate, memberStart, members, first.Count);
             _fine.SetCoarse(coarseB, coarseX, coarseInverse, null, smoothed: _levels.Length > 1);
+            _fine.SetRanges(chunkMembers, coordinateMasses);
             _fine.Alpha = alpha;
             _fine.Beta = beta;
             _fine.Operation = update ? FinePasses.UpdateAndRestrict : FinePasses.Restrict;
@@ -406,6 +408,33 @@ internal sealed unsafe class AggregationMultigrid
         }
     }
 
+    /// <summary>
+    /// For each of the <see cref="Chunks"/> chunks of aggregates that the fine passes run in, the particles its
+    /// aggregates' members cover, [first, end), when they are exactly that range of indices (each particle in one
+    /// aggregate, so the chunks' ranges are disjoint), else (-1, -1): two values per chunk. A cloth's aggregates are
+    /// numbered along its rows, so on a cloth every chunk's members are a range of rows.
+    /// </summary>
+    private static int[] ContiguousChunkMembers(int[] memberStart, int[] members, int aggregates)
+    {
+        var ranges = new int[2 * Chunks];
+        for (var c = 0; c < Chunks; c++)
+        {
+            var (begin, end) = Chunk.Range(c, Chunks, aggregates);
+            int first = int.MaxValue, last = -1;
+            for (var m = memberStart[begin]; m < memberStart[end]; m++)
+            {
+                first = Math.Min(first, members[m]);
+                last = Math.Max(last, members[m]);
+            }
+
+            var contiguous = last >= 0 && last - first + 1 == memberStart[end] - memberStart[begin];
+            ranges[2 * c] = contiguous ? first : -1;
+            ranges[(2 * c) + 1] = contiguous ? last + 1 : -1;
+        }
+
+        return ranges;
+    }
+
     /// <summary>The aggregation hierarchy for the current couplings: allocates, and runs only when the topology changes.</summary>
     private void Build(ILinearizableSystem system, int count, int particles)
     {
@@ -449,6 +478,7 @@ internal sealed unsafe class AggregationMultigrid
 
         _aggregate = map;
         (_memberStart, _members) = Graph.Members(map, coarseCount);
+        _chunkMembers = ContiguousChunkMembers(_memberStart, _members, coarseCount);
         var level = new Level(graph);
         _forwardTarget = new int[count];
         _backwardTarget = new int[count];
@@ -513,6 +543,8 @@ internal sealed unsafe class AggregationMultigrid
         private int* _aggregate;
         private int* _memberStart;
         private int* _members;
+        private int* _chunkMembers;
+        private double* _coordinateMasses;
         private int _aggregates;
 
         public int Operation { get; set; }
@@ -544,6 +576,13 @@ internal sealed unsafe class AggregationMultigrid
         }
 
         /// <summary>Level 1's B, X and inverted blocks; where its post-smoothing writes; whether it is smoothed (not the coarsest).</summary>
+        /// <summary>The chunks' contiguous member ranges (two values per chunk, -1 when not contiguous) and the masses per coordinate.</summary>
+        public void SetRanges(int* chunkMembers, double* coordinateMasses)
+        {
+            _chunkMembers = chunkMembers;
+            _coordinateMasses = coordinateMasses;
+        }
+
         public void SetCoarse(double* coarseB, double* coarseX, double* coarseInverse, double* smoothedX, bool smoothed)
         {
             _coarseB = coarseB;
@@ -602,6 +641,17 @@ internal sealed unsafe class AggregationMultigrid
             }
 
             var update = Operation == UpdateAndRestrict;
+            if (update && _chunkMembers[2 * chunk] >= 0)
+            {
+                // The chunk's members are one range of particles: the update over its coordinates first, with SIMD
+                // where the runtime has it (the same operations per component), then the restriction below reads the
+                // new r and sums r . r in the same member order as the update per member does.
+                ConjugateGradientPasses.UpdateRange(
+                    _z, _jw, _coordinateMasses, _p, _s, _dv, _r, Alpha, Beta, 3L * _chunkMembers[2 * chunk], 3L * _chunkMembers[(2 * chunk) + 1]);
+                _partial[chunk] = RestrictUpdated(begin, end);
+                return;
+            }
+
             for (var a = begin; a < end; a++)
             {
                 // B_I = sum of r_i over the free members of aggregate I, in increasing member order (after each member's
@@ -644,6 +694,47 @@ internal sealed unsafe class AggregationMultigrid
             }
 
             _partial[chunk] = sum;
+        }
+
+        /// <summary>
+        /// The restriction of aggregates [begin, end) after their members' update: B_I and X_I as above, and r . r over
+        /// the members in the same order as the update per member sums it. Returns the chunk's r . r.
+        /// </summary>
+        private double RestrictUpdated(int begin, int end)
+        {
+            var sum = 0.0;
+            for (var a = begin; a < end; a++)
+            {
+                double bx = 0.0, by = 0.0, bz = 0.0;
+                for (var m = _memberStart[a]; m < _memberStart[a + 1]; m++)
+                {
+                    var i = _members[m];
+                    var ri = _r + (3L * i);
+                    double r0 = ri[0], r1 = ri[1], r2 = ri[2];
+                    sum += r0 * r0;
+                    sum += r1 * r1;
+                    sum += r2 * r2;
+                    if (_inverseMasses[i] == 0.0)
+                    {
+                        continue;
+                    }
+
+                    bx += r0;
+                    by += r1;
+                    bz += r2;
+                }
+
+                var b = _coarseB + (3L * a);
+                b[0] = bx;
+                b[1] = by;
+                b[2] = bz;
+                if (_smoothed)
+                {
+                    Blocks3.Multiply(_coarseInverse + (9L * a), b, _coarseX + (3L * a));
+                }
+            }
+
+            return sum;
         }
     }
 
