@@ -97,11 +97,7 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
         var c = _linearized;
         if (_particles is null)
         {
-            for (var k = 0; k < w.Length; k++)
-            {
-                result[k] += c * wr[k];
-            }
-
+            VectorKernels.AddScaled(result, wr, c); // result[k] += c w[k], with SIMD where the runtime has it: the same bits
             return;
         }
 
