@@ -370,16 +370,20 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                     // vectors at a time keep their sums in registers (all of them at once would not), and the chunk's
                     // vectors stay in the cache between the sweeps. Each sum in increasing coordinate order.
                     var count = _startCount;
-                    var sums = stackalloc double[5];
-                    for (var a = 0; a < count; a++)
+                    var sums = stackalloc double[10];
+                    for (var a = 0; a < count; a += 2)
                     {
-                        GramRow(a, begin, end, sums);
-                        for (var c = 0; c < count; c++)
+                        var rows = Math.Min(2, count - a);
+                        GramRows(a, rows, begin, end, sums);
+                        for (var row = 0; row < rows; row++)
                         {
-                            _gramPartials[(a * count) + c][chunk] = sums[c];
-                        }
+                            for (var c = 0; c < count; c++)
+                            {
+                                _gramPartials[((a + row) * count) + c][chunk] = sums[(5 * row) + c];
+                            }
 
-                        _gramPartials[(count * count) + a][chunk] = sums[4];
+                            _gramPartials[(count * count) + a + row][chunk] = sums[(5 * row) + 4];
+                        }
                     }
 
                     break;
@@ -515,18 +519,24 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     }
 
     /// <summary>
-    /// Over the free particles of [begin, end): sums[c] = u_a . q_c for c &lt; 4 (those at c &gt;= count are of no use
-    /// and read q_0 again) and sums[4] = u_a . b.
+    /// Rows a and a + 1 (or row a alone when <paramref name="rows"/> is 1) of the warm start's sums over particles
+    /// [<paramref name="begin"/>, <paramref name="end"/>): u_a . q_c for every c and u_a . b, each in increasing
+    /// coordinate order, into <paramref name="sums"/> (five per row: the four products, those at c &gt;= count of no use
+    /// and read from q_0 again, then b). Two rows at a time so that ten sums run side by side: each sum is a chain of
+    /// additions, and five chains at a time left the processor waiting on them (the same sums in the same order, so the
+    /// same bits).
     /// </summary>
-    private void GramRow(int a, int begin, int end, double* sums)
+    private void GramRows(int a, int rows, int begin, int end, double* sums)
     {
         var count = _startCount;
         var u = (double*)_startVectors[a];
+        var v = rows > 1 ? (double*)_startVectors[a + 1] : u;
         var q0 = (double*)_startProducts[0];
         var q1 = count > 1 ? (double*)_startProducts[1] : q0;
         var q2 = count > 2 ? (double*)_startProducts[2] : q0;
         var q3 = count > 3 ? (double*)_startProducts[3] : q0;
         double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0, sb = 0.0;
+        double t0 = 0.0, t1 = 0.0, t2 = 0.0, t3 = 0.0, tb = 0.0;
         for (var i = begin; i < end; i++)
         {
             if (_pInverseMasses[i] == 0.0)
@@ -536,16 +546,22 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 
             for (long k = 3 * i; k < (3 * i) + 3; k++)
             {
-                var uk = u[k];
-                s0 += uk * q0[k];
-                s1 += uk * q1[k];
-                s2 += uk * q2[k];
-                s3 += uk * q3[k];
-                sb += uk * _pB[k];
+                double uk = u[k], vk = v[k], q0k = q0[k], q1k = q1[k], q2k = q2[k], q3k = q3[k], bk = _pB[k];
+                s0 += uk * q0k;
+                s1 += uk * q1k;
+                s2 += uk * q2k;
+                s3 += uk * q3k;
+                sb += uk * bk;
+                t0 += vk * q0k;
+                t1 += vk * q1k;
+                t2 += vk * q2k;
+                t3 += vk * q3k;
+                tb += vk * bk;
             }
         }
 
         (sums[0], sums[1], sums[2], sums[3], sums[4]) = (s0, s1, s2, s3, sb);
+        (sums[5], sums[6], sums[7], sums[8], sums[9]) = (t0, t1, t2, t3, tb);
     }
 
     /// <summary>
