@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using System.Numerics;
 using System.Runtime.CompilerServices;
 using ParticlePhysics.Parallel;
 
@@ -930,12 +931,25 @@ internal sealed unsafe class AggregationMultigrid
         // implicit-euler --n 64`). The 64-row level's passes (a few microseconds) stay on the calling thread.
         private const int ParallelRows = 256;
 
+        /// <summary>
+        /// Whether the sweeps take a row's three components as lanes of one System.Numerics.Vector (CoreCLR with
+        /// 256-bit vectors: four lanes of double), else one at a time (Mono, IL2CPP, other widths). Per lane the
+        /// same multiplications, additions and subtractions in the same order, so the same bits.
+        /// </summary>
+        private static readonly bool Lanes = Vector.IsHardwareAccelerated && Vector<double>.Count == 4;
+
         private readonly int[] _rowStart;
         private readonly int[] _column;
         private readonly int[] _split;     // per row: its first entry right of the diagonal (columns are increasing)
         private readonly int[] _slot;      // per entry: its stored block, counted after the diagonal ones
         private readonly int[] _upperStart; // per row, and one past the last: its first stored off-diagonal block
         private double[] _smoothed; // where a post-smoothing writes the new X (the rows still to come read the old one)
+
+        // The lanes path (Lanes): each row's blocks in row order, the diagonal first, each 3 x 3 block by columns, so
+        // that a block times a vector is three column vectors scaled and added, four lanes at a time (the fourth
+        // unused); and the inverted diagonal blocks by columns. Rewritten from Values and Inverse at every Invert.
+        private readonly double[] _laneBlocks = Array.Empty<double>();
+        private readonly double[] _laneInverse = Array.Empty<double>();
         private int[] _nextAggregate = Array.Empty<int>();
         private int[] _nextMemberStart = Array.Empty<int>();
         private int[] _nextMembers = Array.Empty<int>();
@@ -956,9 +970,16 @@ internal sealed unsafe class AggregationMultigrid
             (_split, _slot, _upperStart) = UpperSlots(Count, _rowStart, _column);
             Values = new double[9 * (Count + _upperStart[Count])];
             Inverse = new double[9 * Count];
-            B = new double[3 * Count];
-            X = new double[3 * Count];
-            _smoothed = new double[3 * Count];
+
+            // One value past the rows: the lanes path reads a row's B and X as four values (the fourth unused).
+            B = new double[(3 * Count) + 1];
+            X = new double[(3 * Count) + 1];
+            _smoothed = new double[(3 * Count) + 1];
+            if (Lanes)
+            {
+                _laneBlocks = new double[(9 * (Count + _column.Length)) + 1];
+                _laneInverse = new double[(9 * Count) + 1];
+            }
         }
 
         public int Count { get; }
@@ -1096,6 +1117,48 @@ internal sealed unsafe class AggregationMultigrid
                     Inverse[o + 4] = 1.0 / Math.Max(d[o + 4], double.Epsilon);
                     Inverse[o + 8] = 1.0 / Math.Max(d[o + 8], double.Epsilon);
                 }
+
+                if (Lanes)
+                {
+                    LaneRow(i);
+                }
+            }
+        }
+
+        /// <summary>
+        /// Row i's blocks and inverted diagonal block by columns for the lanes path: the diagonal block and each entry's
+        /// block A_ij, a block right of the diagonal transposed from its row-major storage, one left of it copied as it
+        /// is (its storage is A_ji = A_ij^T row by row, which is A_ij column by column).
+        /// </summary>
+        private void LaneRow(int i)
+        {
+            var lanes = _laneBlocks;
+            var k = _rowStart[i];
+            Transpose(Values, 9 * i, lanes, 9 * (i + k));
+            Transpose(Inverse, 9 * i, _laneInverse, 9 * i);
+            for (; k < _rowStart[i + 1]; k++)
+            {
+                var stored = 9 * (Count + _slot[k]);
+                if (k < _split[i])
+                {
+                    Array.Copy(Values, stored, lanes, 9 * (i + 1 + k), 9);
+                }
+                else
+                {
+                    Transpose(Values, stored, lanes, 9 * (i + 1 + k));
+                }
+            }
+        }
+
+        /// <summary>to[q + 3 c + r] = from[p + 3 r + c]: a row-major 3 x 3 block written by columns.</summary>
+        private static void Transpose(double[] from, int p, double[] to, int q)
+        {
+            for (var r = 0; r < 3; r++)
+            {
+                for (var c = 0; c < 3; c++)
+                {
+                    to[q + (3 * c) + r] = from[p + (3 * r) + c];
+                }
             }
         }
 
@@ -1209,6 +1272,23 @@ internal sealed unsafe class AggregationMultigrid
         private void PostSmoothRowCore(
             int i, double* values, int* rowStart, int* column, int* split, int* slot, double* b, double* x, double* inverse, double* output)
         {
+            if (Lanes)
+            {
+                // x_i + W r as W's columns scaled by r's components: per lane ((W_l0 r_0 + W_l1 r_1) + W_l2 r_2), as below.
+                fixed (double* blocks = _laneBlocks, inverseLanes = _laneInverse)
+                {
+                    var rl = ResidualLanes(i, blocks, rowStart, column, b, x);
+                    var wi = inverseLanes + (9L * i);
+                    var t = (Load(wi) * new Vector<double>(rl[0])) + (Load(wi + 3) * new Vector<double>(rl[1]));
+                    var o = Load(x + (3L * i)) + (t + (Load(wi + 6) * new Vector<double>(rl[2])));
+                    output[0] = o[0];
+                    output[1] = o[1];
+                    output[2] = o[2];
+                }
+
+                return;
+            }
+
             var r = ResidualRow(i, values, rowStart, column, split, slot, b, x);
             double* w = inverse + (9L * i), xi = x + (3L * i);
             output[0] = xi[0] + ((w[0] * r.X) + (w[1] * r.Y) + (w[2] * r.Z));
@@ -1248,6 +1328,35 @@ internal sealed unsafe class AggregationMultigrid
 
             return new Vector3d(r0, r1, r2);
         }
+
+        /// <summary>
+        /// <see cref="ResidualRow"/> with the row's three components as lanes (the fourth unused): each block times x_j
+        /// as its columns scaled by x_j's components, ((A_l0 y_0 + A_l1 y_1) + A_l2 y_2) per lane, subtracted in the
+        /// same order: the same bits.
+        /// </summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private static Vector<double> ResidualLanes(int i, double* blocks, int* rowStart, int* column, double* b, double* x)
+        {
+            int k = rowStart[i], end = rowStart[i + 1];
+            double* d = blocks + (9L * (i + k)), xi = x + (3L * i);
+            var r = Load(b + (3L * i)) - ColumnsTimes(d, xi);
+            for (; k < end; k++)
+            {
+                r -= ColumnsTimes(blocks + (9L * (i + 1 + k)), x + (3L * column[k]));
+            }
+
+            return r;
+        }
+
+        /// <summary>A block stored by columns times the 3-vector y, as lanes: (c_0 y_0 + c_1 y_1) + c_2 y_2.</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private static Vector<double> ColumnsTimes(double* columns, double* y) =>
+            ((Load(columns) * new Vector<double>(y[0])) + (Load(columns + 3) * new Vector<double>(y[1])))
+            + (Load(columns + 6) * new Vector<double>(y[2]));
+
+        /// <summary>Four values from <paramref name="at"/> (each array the lanes path reads has one value past its last row).</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private static Vector<double> Load(double* at) => *(Vector<double>*)at;
 
         public void Execute(int chunk, int chunkCount)
         {
@@ -1296,15 +1405,29 @@ internal sealed unsafe class AggregationMultigrid
                     return;
                 }
 
+                fixed (double* blocks = _laneBlocks)
                 for (var a = begin; a < end; a++)
                 {
                     double b0 = 0.0, b1 = 0.0, b2 = 0.0;
-                    for (var k = start[a]; k < start[a + 1]; k++)
+                    if (Lanes)
                     {
-                        var r = ResidualRow(members[k], values, rowStart, column, split, slot, b, x); // member k's residual row
-                        b0 += r.X;
-                        b1 += r.Y;
-                        b2 += r.Z;
+                        var sum = Vector<double>.Zero; // the members' residual rows added lane by lane, in member order
+                        for (var k = start[a]; k < start[a + 1]; k++)
+                        {
+                            sum += ResidualLanes(members[k], blocks, rowStart, column, b, x);
+                        }
+
+                        (b0, b1, b2) = (sum[0], sum[1], sum[2]);
+                    }
+                    else
+                    {
+                        for (var k = start[a]; k < start[a + 1]; k++)
+                        {
+                            var r = ResidualRow(members[k], values, rowStart, column, split, slot, b, x); // member k's residual row
+                            b0 += r.X;
+                            b1 += r.Y;
+                            b2 += r.Z;
+                        }
                     }
 
                     var nb = nextB + (3L * a);
