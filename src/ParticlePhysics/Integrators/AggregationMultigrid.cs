@@ -1098,7 +1098,7 @@ internal sealed unsafe class AggregationMultigrid
         /// </summary>
         public void Invert(IParallelRunner? runner) => RunPass(InvertPass, Count, runner);
 
-        /// <summary>Rows [begin, end) of <see cref="Invert"/>.</summary>
+        /// <summary>Rows [begin, end) of <see cref="Invert"/>, then their blocks by columns for the lanes path.</summary>
         private void InvertRows(int begin, int end)
         {
             var d = Values;
@@ -1117,10 +1117,16 @@ internal sealed unsafe class AggregationMultigrid
                     Inverse[o + 4] = 1.0 / Math.Max(d[o + 4], double.Epsilon);
                     Inverse[o + 8] = 1.0 / Math.Max(d[o + 8], double.Epsilon);
                 }
+            }
 
-                if (Lanes)
+            if (Lanes)
+            {
+                fixed (double* values = Values, inverse = Inverse, lanes = _laneBlocks, inverseLanes = _laneInverse)
                 {
-                    LaneRow(i);
+                    for (var i = begin; i < end; i++)
+                    {
+                        LaneRow(i, values, inverse, lanes, inverseLanes);
+                    }
                 }
             }
         }
@@ -1130,36 +1136,35 @@ internal sealed unsafe class AggregationMultigrid
         /// block A_ij, a block right of the diagonal transposed from its row-major storage, one left of it copied as it
         /// is (its storage is A_ji = A_ij^T row by row, which is A_ij column by column).
         /// </summary>
-        private void LaneRow(int i)
+        private void LaneRow(int i, double* values, double* inverse, double* lanes, double* inverseLanes)
         {
-            var lanes = _laneBlocks;
             var k = _rowStart[i];
-            Transpose(Values, 9 * i, lanes, 9 * (i + k));
-            Transpose(Inverse, 9 * i, _laneInverse, 9 * i);
+            Transpose(values + (9L * i), lanes + (9L * (i + k)));
+            Transpose(inverse + (9L * i), inverseLanes + (9L * i));
             for (; k < _rowStart[i + 1]; k++)
             {
-                var stored = 9 * (Count + _slot[k]);
+                double* stored = values + (9L * (Count + _slot[k])), to = lanes + (9L * (i + 1 + k));
                 if (k < _split[i])
                 {
-                    Array.Copy(Values, stored, lanes, 9 * (i + 1 + k), 9);
+                    for (var q = 0; q < 9; q++)
+                    {
+                        to[q] = stored[q];
+                    }
                 }
                 else
                 {
-                    Transpose(Values, stored, lanes, 9 * (i + 1 + k));
+                    Transpose(stored, to);
                 }
             }
         }
 
-        /// <summary>to[q + 3 c + r] = from[p + 3 r + c]: a row-major 3 x 3 block written by columns.</summary>
-        private static void Transpose(double[] from, int p, double[] to, int q)
+        /// <summary>A row-major 3 x 3 block written by columns: to[3 c + r] = from[3 r + c].</summary>
+        [MethodImpl(MethodImplOptions.AggressiveInlining)]
+        private static void Transpose(double* from, double* to)
         {
-            for (var r = 0; r < 3; r++)
-            {
-                for (var c = 0; c < 3; c++)
-                {
-                    to[q + (3 * c) + r] = from[p + (3 * r) + c];
-                }
-            }
+            (to[0], to[1], to[2]) = (from[0], from[3], from[6]);
+            (to[3], to[4], to[5]) = (from[1], from[4], from[7]);
+            (to[6], to[7], to[8]) = (from[2], from[5], from[8]);
         }
 
         /// <summary>
