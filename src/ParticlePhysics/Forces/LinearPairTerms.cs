@@ -1,4 +1,6 @@
 using System;
+using System.Numerics;
+using System.Runtime.InteropServices;
 using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Forces;
@@ -90,7 +92,21 @@ internal static class LinearPairTerms
         var blocks = destinationLength / 9;
         var forward = forwardBlock.ForReading();
         var backward = backwardBlock.ForReading();
-        for (var s = 0; s < count; s++)
+        var s = 0;
+        if (Vector.IsHardwareAccelerated)
+        {
+            // Several couplings at a time where the runtime has SIMD (the check runs at every step of the multigrid);
+            // a chunk with a target out of range is left to the loop below, which names it.
+            var limit = new Vector<int>(blocks);
+            var forwards = MemoryMarshal.Cast<int, Vector<int>>(forward);
+            var backwards = MemoryMarshal.Cast<int, Vector<int>>(backward);
+            for (var v = 0; v < forwards.Length && Vector.LessThanAll(Vector.Max(forwards[v], backwards[v]), limit); v++)
+            {
+                s += Vector<int>.Count;
+            }
+        }
+
+        for (; s < count; s++)
         {
             if (forward[s] >= blocks || backward[s] >= blocks)
             {

@@ -49,6 +49,33 @@ public class LinearizationBoundsTests
         Assert.Throws<InvalidOperationException>(() => springs.AddJacobianProduct(new double[9], new double[9]));
     }
 
+    [Theory]
+    [InlineData(3)]
+    [InlineData(40)]
+    [InlineData(98)]
+    public void A_coupling_target_past_the_destination_is_refused_by_name_before_anything_is_written(int bad)
+    {
+        // 99 couplings: checked several at a time where the runtime has SIMD, the last few one by one; a target out of
+        // range in either part is named, with its coupling, and the destination is left as it was.
+        var (world, springs) = Chain(100, springs: 99);
+        springs.Linearize(world.View(), 1.0, 0.5, new double[world.CoordinateCount]);
+        var forward = new int[99];
+        var backward = new int[99];
+        for (var c = 0; c < 99; c++)
+        {
+            (forward[c], backward[c]) = (c, 99 + c);
+        }
+
+        var destination = new double[9 * 198];
+        springs.AddCouplingBlocks(destination, forward, backward);
+        Assert.Contains(destination, v => v != 0.0);
+        Array.Clear(destination, 0, destination.Length);
+        backward[bad] = 198;
+        var e = Assert.Throws<ArgumentOutOfRangeException>(() => springs.AddCouplingBlocks(destination, forward, backward));
+        Assert.Contains($"Coupling {bad} targets blocks {bad} and 198; the destination holds 198", e.Message, StringComparison.Ordinal);
+        Assert.All(destination, v => Assert.Equal(0.0, v));
+    }
+
     public static TheoryData<string> Forces() => new() { "springs", "zero-length", "dampers", "drag" };
 
     [Theory]
