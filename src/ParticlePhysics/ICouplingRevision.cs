@@ -10,9 +10,10 @@ internal interface ICouplingRevision
 {
     /// <summary>
     /// True when every force that states couplings only ever appends them (<see cref="IAppendOnlyCouplings"/>), with
-    /// <paramref name="revision"/> a number that changes whenever the set of forces does: then the couplings are the
-    /// same as long as the revision and <see cref="ILinearizableSystem.CouplingCount"/> are. False when some force's
-    /// couplings may change in place (a user's <see cref="IJacobianCouplings"/>): compare them.
+    /// <paramref name="revision"/> a number that no other system gives and that changes whenever this system's set of
+    /// forces does: then the couplings are the same as long as the revision and
+    /// <see cref="ILinearizableSystem.CouplingCount"/> are, even for a solver that steps several systems in turn. False
+    /// when some force's couplings may change in place (a user's <see cref="IJacobianCouplings"/>): compare them.
     /// </summary>
-    bool TryGetCouplingRevision(out int revision);
+    bool TryGetCouplingRevision(out long revision);
 }

@@ -53,6 +53,10 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
     // Bumped whenever particles or generators are added or removed: products and blocks need a Linearize of the
     // world as it is (its buffers' sizes and its generators' linearisations follow the particles and the generators).
     private int _structureVersion;
+
+    // This world's number among the worlds of the process (ICouplingRevision: a revision no other world gives).
+    private static long _worldsCreated;
+    private readonly long _worldNumber = System.Threading.Interlocked.Increment(ref _worldsCreated);
     private int _linearizedVersion = -1;
     private bool _stepping;
     private int _frameDepth; // open FixedTimestepDriver frames: their steps leave the constraint sets' bracket to them
@@ -994,12 +998,13 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
 
     /// <inheritdoc />
     /// <remarks>
-    /// The revision is the world's structure version, which every added or removed force and particle changes; the
-    /// forces are those of the last linearisation, as for <see cref="ILinearizableSystem.CouplingCount"/>.
+    /// The revision is the world's number among the process's worlds (high 32 bits) and its structure version, which
+    /// every added or removed force and particle changes (low 32 bits); the forces are those of the last
+    /// linearisation, as for <see cref="ILinearizableSystem.CouplingCount"/>.
     /// </remarks>
-    bool ICouplingRevision.TryGetCouplingRevision(out int revision)
+    bool ICouplingRevision.TryGetCouplingRevision(out long revision)
     {
-        revision = _structureVersion;
+        revision = (_worldNumber << 32) | (uint)_structureVersion;
         for (var j = 0; j < _linearized.Count; j++)
         {
             if (_linearized[j] is IJacobianCouplings and not IAppendOnlyCouplings)

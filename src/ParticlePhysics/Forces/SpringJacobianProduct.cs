@@ -43,6 +43,7 @@ internal sealed unsafe class SpringJacobianProduct : IParallelWork
     private int[] _partStart = Array.Empty<int>();
     private int[] _segments = Array.Empty<int>();
     private int _springs = -1;
+    private int _topology = -1;
     private int _particles = -1;
     private int _parts = -1;
 
@@ -74,12 +75,13 @@ internal sealed unsafe class SpringJacobianProduct : IParallelWork
     /// y += J w for the first <paramref name="count"/> springs of <paramref name="pairs"/>, linearised in
     /// <paramref name="linear"/> (5 values each: u, s, t), over <paramref name="parts"/> parts: on
     /// <paramref name="runner"/>, or in order on the calling thread without one. The caller checked that the ends are
-    /// below <paramref name="particles"/> and that w and y hold 3 values per particle.
+    /// below <paramref name="particles"/> and that w and y hold 3 values per particle; <paramref name="topology"/> is
+    /// its topology version, which changes whenever its springs' ends may have (the segments are rebuilt then).
     /// </summary>
     public void Product(
-        double* w, double* y, double* linear, ForceElements pairs, int count, int particles, int parts, IParallelRunner? runner)
+        double* w, double* y, double* linear, ForceElements pairs, int count, int topology, int particles, int parts, IParallelRunner? runner)
     {
-        Update(pairs, count, particles, parts);
+        Update(pairs, count, topology, particles, parts);
         fixed (int* first = pairs.First, second = pairs.Second)
         {
             _w = w;
@@ -99,10 +101,10 @@ internal sealed unsafe class SpringJacobianProduct : IParallelWork
         }
     }
 
-    /// <summary>Rebuilds the parts' segments when the springs, the particles or the parts changed (springs are only ever added).</summary>
-    private void Update(ForceElements pairs, int count, int particles, int parts)
+    /// <summary>Rebuilds the parts' segments when the springs, their topology, the particles or the parts changed.</summary>
+    private void Update(ForceElements pairs, int count, int topology, int particles, int parts)
     {
-        if (count == _springs && particles == _particles && parts == _parts)
+        if (count == _springs && topology == _topology && particles == _particles && parts == _parts)
         {
             return;
         }
@@ -153,6 +155,7 @@ internal sealed unsafe class SpringJacobianProduct : IParallelWork
         _partStart = start;
         _segments = segments;
         _springs = count;
+        _topology = topology;
         _particles = particles;
         _parts = parts;
     }

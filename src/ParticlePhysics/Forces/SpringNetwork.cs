@@ -501,7 +501,8 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         {
             // (One instance for each, so that a host switching between a runner and none does not rebuild the parts.)
             var product = _runner is null ? _product ??= new SpringJacobianProduct() : _parallelProduct ??= new SpringJacobianProduct();
-            product.Product(wp, y, lin, _pairs, _pairs.Count, _system.Count, _runner is null ? 1 : ProductPartsPerThread * _runner.MaxParallelism, _runner);
+            product.Product(
+                wp, y, lin, _pairs, _pairs.Count, _topologyVersion, _system.Count, _runner is null ? 1 : ProductPartsPerThread * _runner.MaxParallelism, _runner);
         }
 
         var anchoredLin = _anchoredLinear;

@@ -45,7 +45,7 @@ internal sealed unsafe class AggregationMultigrid
     private int[] _checkFirst = Array.Empty<int>();
     private int[] _checkSecond = Array.Empty<int>();
     private int _couplings = -1;
-    private int? _revision; // the system's coupling revision when the couplings were last seen, if it has one
+    private long? _revision; // the system's coupling revision when the couplings were last seen, if it has one
     private int _particles = -1;
 
     // Fine level: the aggregate of each particle, its members, and the block
@@ -107,7 +107,7 @@ internal sealed unsafe class AggregationMultigrid
 
         // The couplings are compared pair by pair unless the system can tell that they are the same (ICouplingRevision).
         var count = system.CouplingCount;
-        var revised = system is ICouplingRevision r && r.TryGetCouplingRevision(out var revision) ? revision : (int?)null;
+        var revised = system is ICouplingRevision r && r.TryGetCouplingRevision(out var revision) ? revision : (long?)null;
         var unchanged = revised is not null && revised == _revision;
         if (count != _couplings || particles != _particles || (!unchanged && !SameCouplings(system, count)))
         {
@@ -198,7 +198,7 @@ internal sealed unsafe class AggregationMultigrid
         var n = 3L * _particles;
         if (_levels.Length == 0 || cg.Particles != _particles || cg.InverseMasses.Length < _particles || cg.R.Length < n
             || cg.Z.Length < n || cg.Dv.Length < n || cg.P.Length < n || cg.S.Length < n || cg.JacobianProduct.Length < n || cg.Masses.Length < _particles
-            || cg.Inverses.Length < 2 * n)
+            || cg.Inverses.Length < 2 * n || cg.CoordinateMasses.Length < n)
         {
             throw new InvalidOperationException(
                 $"The multigrid was set up for {_particles} particles; it was applied to {cg.Particles}, or to vectors shorter than theirs.");
@@ -576,7 +576,6 @@ internal sealed unsafe class AggregationMultigrid
             _aggregates = aggregates;
         }
 
-        /// <summary>Level 1's B, X and inverted blocks; where its post-smoothing writes; whether it is smoothed (not the coarsest).</summary>
         /// <summary>The chunks' contiguous member ranges (two values per chunk, -1 when not contiguous) and the masses per coordinate.</summary>
         public void SetRanges(int* chunkMembers, double* coordinateMasses)
         {
@@ -584,6 +583,7 @@ internal sealed unsafe class AggregationMultigrid
             _coordinateMasses = coordinateMasses;
         }
 
+        /// <summary>Level 1's B, X and inverted blocks; where its post-smoothing writes; whether it is smoothed (not the coarsest).</summary>
         public void SetCoarse(double* coarseB, double* coarseX, double* coarseInverse, double* smoothedX, bool smoothed)
         {
             _coarseB = coarseB;

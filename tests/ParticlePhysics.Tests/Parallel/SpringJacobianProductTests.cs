@@ -55,9 +55,9 @@ public class SpringJacobianProductTests
     }
 
     [Theory]
-    [InlineData(1)]
     [InlineData(2)]
     [InlineData(3)]
+    [InlineData(4)]
     [InlineData(5)]
     [InlineData(16)]
     public void Any_number_of_parts_on_any_runner_gives_the_bits_of_one_thread(int parallelism)
