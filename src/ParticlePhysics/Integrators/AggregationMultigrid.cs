@@ -929,7 +929,7 @@ internal sealed unsafe class AggregationMultigrid
         /// 256-bit vectors: four lanes of double), else one at a time (Mono, IL2CPP, other widths). Per lane the
         /// same multiplications, additions and subtractions in the same order, so the same bits.
         /// </summary>
-        private static readonly bool Lanes = Vector.IsHardwareAccelerated && Vector<double>.Count == 4;
+        private static bool Lanes => Vector.IsHardwareAccelerated && Vector<double>.Count == 4;
 
         private readonly int[] _rowStart;
         private readonly int[] _column;
@@ -1371,7 +1371,7 @@ internal sealed unsafe class AggregationMultigrid
                 return;
             }
 
-            fixed (double* b = B, x = X, smoothed = _smoothed, inverse = Inverse, values = Values)
+            fixed (double* b = B, x = X, smoothed = _smoothed, inverse = Inverse, values = Values, lanes = _laneBlocks, inverseLanes = _laneInverse)
             fixed (int* rowStart = _rowStart, column = _column, split = _split, slot = _slot)
             fixed (double* nextB = _next!.B, nextX = _next.X, nextInverse = _next.Inverse)
             fixed (int* aggregate = _nextAggregate, start = _nextMemberStart, members = _nextMembers)
@@ -1389,7 +1389,7 @@ internal sealed unsafe class AggregationMultigrid
                 if (_operation == PostSmoothPass)
                 {
                     var above = _above!;
-                    fixed (double* aboveX = above.X, lanes = _laneBlocks, inverseLanes = _laneInverse)
+                    fixed (double* aboveX = above.X)
                     fixed (int* aboveStart = above._nextMemberStart, aboveMembers = above._nextMembers)
                     {
                         for (var i = begin; i < end; i++)
@@ -1409,7 +1409,6 @@ internal sealed unsafe class AggregationMultigrid
                     return;
                 }
 
-                fixed (double* blocks = _laneBlocks)
                 for (var a = begin; a < end; a++)
                 {
                     double b0 = 0.0, b1 = 0.0, b2 = 0.0;
@@ -1418,7 +1417,7 @@ internal sealed unsafe class AggregationMultigrid
                         var sum = Vector<double>.Zero; // the members' residual rows added lane by lane, in member order
                         for (var k = start[a]; k < start[a + 1]; k++)
                         {
-                            sum += ResidualLanes(members[k], blocks, rowStart, column, b, x);
+                            sum += ResidualLanes(members[k], lanes, rowStart, column, b, x);
                         }
 
                         (b0, b1, b2) = (sum[0], sum[1], sum[2]);
