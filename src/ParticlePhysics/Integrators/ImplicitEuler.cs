@@ -201,16 +201,18 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         Array.Clear(jw, 0, n);
         Array.Clear(blocks, 0, blocks.Length);
         system.AccumulateForcesAndLinearize(end, x0, v0, h * h, h, UserForces, jw, blocks).CopyTo(f0);
-        CheckFinite(f0, inverseMasses, time, end, "the force on particle {0} is {1}: a force generator wrote a value that is not finite");
 
         // b = h (f0 + h K v0), filtered; the multigrid's coarse levels from the same linearisation (from the blocks
         // J_ii, which the inversion leaves as they are); block Jacobi P = inverse of the blocks of M - (h D + h^2 K).
         var passes = _passes ??= new ConjugateGradientPasses();
         passes.Bind(b, dv, r, p, s, z, jw, blocks, masses, inverseMasses, runner);
         var rhsNorm = Math.Sqrt(passes.RightHandSide(f0, h));
-        CheckFinite(b, inverseMasses, time, end, "the implicit system's right-hand side h (f + h K v) at particle {0} is {1}: the step is too large for these forces");
         if (!DoubleChecks.IsFinite(rhsNorm))
         {
+            // A finite |b|^2 is a sum of finite squares, so every b_i = h (f_i + h (K v)_i) of a free particle, and
+            // with it f_i, is finite: only a norm that is not finite needs the search for its cause (a force, then b).
+            CheckFinite(f0, inverseMasses, time, end, "the force on particle {0} is {1}: a force generator wrote a value that is not finite");
+            CheckFinite(b, inverseMasses, time, end, "the implicit system's right-hand side h (f + h K v) at particle {0} is {1}: the step is too large for these forces");
             throw Diverged(time, end, 0, rhsNorm, "the norm of the implicit system's right-hand side overflows: the step is too large for these forces");
         }
 
