@@ -24,7 +24,7 @@ namespace ParticlePhysics;
 /// drive it along a path (a kinematic particle, see <see cref="MoveKinematic"/>). Stepping allocates nothing once
 /// the system and its integrator have been used once.
 /// </remarks>
-public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, ICouplingRevision
+public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, ICouplingRevision, IJacobianProductTail
 {
     private readonly List<IForceGenerator> _forceGenerators = new();
     private readonly List<IConstraintSet> _constraintSets = new();
@@ -962,6 +962,62 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
         {
             _linearized[j].AddJacobianProduct(w, result);
         }
+    }
+
+    /// <inheritdoc />
+    bool IJacobianProductTail.TryGetUniformTail(out double coefficient)
+    {
+        var tail = UniformTail(out coefficient);
+        return tail >= 0;
+    }
+
+    /// <inheritdoc />
+    /// <exception cref="InvalidOperationException">
+    /// No Linearize yet, or particles or generators were added or removed since the last one, or no uniform tail.
+    /// </exception>
+    void IJacobianProductTail.AddJacobianProductBeforeTail(ReadOnlySpan<double> w, Span<double> result)
+    {
+        CheckLinearized(w.Length, result.Length, 3);
+        var tail = UniformTail(out _);
+        if (tail < 0)
+        {
+            throw new InvalidOperationException("The world's Jacobian product has no uniform tail: use AddJacobianProduct.");
+        }
+
+        for (var j = 0; j < tail; j++)
+        {
+            _linearized[j].AddJacobianProduct(w, result);
+        }
+    }
+
+    /// <summary>
+    /// The index among the linearised generators of the last one whose product does anything, when that product is
+    /// c w on every coordinate (with <paramref name="coefficient"/> c), else -1. The generators after it add nothing.
+    /// </summary>
+    private int UniformTail(out double coefficient)
+    {
+        coefficient = 0.0;
+        if (_linearizedVersion != _structureVersion)
+        {
+            return -1;
+        }
+
+        // Bounded by the generators; the first from the end that is not a product of nothing decides.
+        for (var j = _linearized.Count - 1; j >= 0; j--)
+        {
+            if (_linearized[j] is not IUniformJacobianProduct uniform || !uniform.TryGetUniformProduct(out var c, out var none))
+            {
+                return -1;
+            }
+
+            if (!none)
+            {
+                coefficient = c;
+                return j;
+            }
+        }
+
+        return -1;
     }
 
     /// <inheritdoc />

@@ -7,7 +7,7 @@ namespace ParticlePhysics.Forces;
 /// Uniform gravity: F_i = m_i g on every particle, with g = (0, -9.81, 0) m/s^2 by default (y up).
 /// Potential energy: U = -sum m_i g . x_i. Its Jacobian is zero: implicit integrators treat it exactly.
 /// </summary>
-public sealed class Gravity : IForceGenerator, IPotentialEnergy, IForceJacobian
+public sealed class Gravity : IForceGenerator, IPotentialEnergy, IForceJacobian, IUniformJacobianProduct
 {
     /// <summary>Standard gravity, 9.81 m/s^2, as the course uses it.</summary>
     public const double StandardAcceleration = 9.81;
@@ -109,6 +109,14 @@ public sealed class Gravity : IForceGenerator, IPotentialEnergy, IForceJacobian
     /// <inheritdoc />
     public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
     {
+    }
+
+    /// <inheritdoc />
+    bool IUniformJacobianProduct.TryGetUniformProduct(out double coefficient, out bool none)
+    {
+        coefficient = 0.0;
+        none = true;
+        return true;
     }
 
     /// <inheritdoc />

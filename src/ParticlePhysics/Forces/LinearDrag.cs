@@ -9,7 +9,7 @@ namespace ParticlePhysics.Forces;
 /// set. With gravity alone it gives the free fall of characteristic time tau = m / lambda.
 /// Jacobian: df_i/dv_i = -lambda I (linear, so implicit Euler is exact backward Euler for it).
 /// </summary>
-public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
+public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian, IUniformJacobianProduct
 {
     private readonly int[]? _particles;
     private readonly ParticleWorld? _system;
@@ -87,6 +87,15 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian
     {
         _linearized = -_coefficient * velocityScale;
         _stamp.Record(0, 0);
+    }
+
+    /// <inheritdoc />
+    bool IUniformJacobianProduct.TryGetUniformProduct(out double coefficient, out bool none)
+    {
+        _stamp.Check(nameof(LinearDrag), 0, 0);
+        coefficient = _linearized;
+        none = false;
+        return _particles is null; // (the product below: result[k] += c w[k] on every k, as VectorKernels.AddScaled adds it)
     }
 
     /// <inheritdoc />

@@ -37,6 +37,8 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 
 
     private readonly double[] _partial = new double[AggregationMultigrid.Chunks];
+    private bool _hasTail;
+    private double _tail;
     private readonly double[] _secondPartial = new double[AggregationMultigrid.Chunks];
     // The sums of WarmStartGram, each per chunk: u_a . q_c for a, c < count (row-major), then u_a . b.
     private readonly double[][] _gramPartials = NewPartials((WarmStartHistory.Depth * WarmStartHistory.Depth) + WarmStartHistory.Depth);
@@ -277,12 +279,27 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         }
     }
 
-    /// <summary>r = b - (M dv - jw) on the free particles (jw = J dv), 0 on pinned ones, then jw = 0; returns r . r.</summary>
+    /// <summary>
+    /// The uniform last term of this step's Jacobian products, jw[k] += c w[k] (<see cref="IJacobianProductTail"/>),
+    /// which <see cref="Residual"/> and <see cref="MassMinusJacobian"/> then add to the product they read, on the free
+    /// particles, before using it; <paramref name="present"/> false: the products are whole.
+    /// </summary>
+    public void SetProductTail(bool present, double coefficient)
+    {
+        _hasTail = present;
+        _tail = present ? coefficient : 0.0;
+    }
+
+    /// <summary>
+    /// r = b - (M dv - jw) on the free particles (jw = J dv, with the product's tail added first), 0 on pinned ones,
+    /// then jw = 0; returns r . r.
+    /// </summary>
     public double Residual() => Run(ResidualPass);
 
     /// <summary>
-    /// z . w with w = M z - jw on the free particles (jw = J z), jw = 0 on the pinned ones (w is 0 there); the free
-    /// particles' jw is left for the update, which computes w from it again and clears it.
+    /// z . w with w = M z - jw on the free particles (jw = J z, with the product's tail added first and kept), jw = 0
+    /// on the pinned ones (w is 0 there); the free particles' jw is left for the update, which computes w from it again
+    /// and clears it.
     /// </summary>
     public double MassMinusJacobian() => Run(MassMinusJacobianPass);
 
@@ -408,6 +425,14 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                         continue;
                     }
 
+                    if (_hasTail)
+                    {
+                        // The product's last term, as the force would have added it: jw[k] += c dv[k].
+                        jw[0] += _tail * x[0];
+                        jw[1] += _tail * x[1];
+                        jw[2] += _tail * x[2];
+                    }
+
                     var m = _pMasses[i];
                     r[0] = bi[0] - ((m * x[0]) - jw[0]);
                     r[1] = bi[1] - ((m * x[1]) - jw[1]);
@@ -428,6 +453,14 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                     {
                         jw[0] = jw[1] = jw[2] = 0.0; // (z is 0 here, so the update's w = M z - jw is 0)
                         continue;
+                    }
+
+                    if (_hasTail)
+                    {
+                        // The product's last term, as the force would have added it: jw[k] += c z[k], kept for the update.
+                        jw[0] += _tail * z[0];
+                        jw[1] += _tail * z[1];
+                        jw[2] += _tail * z[2];
                     }
 
                     var m = _pMasses[i];

@@ -206,6 +206,13 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         // J_ii, which the inversion leaves as they are); block Jacobi P = inverse of the blocks of M - (h D + h^2 K).
         var passes = _passes ??= new ConjugateGradientPasses();
         passes.Bind(b, dv, r, p, s, z, jw, blocks, masses, inverseMasses, runner);
+
+        // A product that ends with a uniform term c w (a drag on every particle, after the springs) leaves that term to
+        // the passes that read the product (IJacobianProductTail): one pass over the vectors less per product, and on a
+        // runner no pass on the calling thread alone.
+        var tailCoefficient = 0.0;
+        var tail = system is IJacobianProductTail split && split.TryGetUniformTail(out tailCoefficient) ? split : null;
+        passes.SetProductTail(tail is not null, tailCoefficient);
         var rhsNorm = Math.Sqrt(passes.RightHandSide(f0, h));
         if (!DoubleChecks.IsFinite(rhsNorm))
         {
@@ -261,7 +268,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
             }
 
             passes.WarmStart(_startVectors, _startCoefficients, count);
-            system.AddJacobianProduct(dv, jw); // (jw is 0: the right-hand side's pass cleared it as it read it)
+            AddProduct(system, tail, dv, jw); // (jw is 0: the right-hand side's pass cleared it as it read it)
             rr = passes.Residual();
         }
         else
@@ -289,7 +296,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         if (residualNorm > target && _maxIterations > 0)
         {
             var gamma = Precondition(passes, ref multigrid, runner);
-            var delta = ApplySystemMatrix(system, passes, time, end);
+            var delta = ApplySystemMatrix(system, tail, passes, time, end);
             var alpha = gamma / delta;
             var beta = 0.0;
             while (delta > 0.0)
@@ -313,7 +320,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
                     restart = true;
                 }
 
-                delta = ApplySystemMatrix(system, passes, time, end);
+                delta = ApplySystemMatrix(system, tail, passes, time, end);
                 beta = restart ? 0.0 : gammaNext / gamma;
                 delta -= restart ? 0.0 : beta * gammaNext / alpha; // p . A p for the next direction
                 alpha = gammaNext / delta;
@@ -458,12 +465,13 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     /// jw = J z, and z . w with w = (M - J) z on the free particles (0 on the pinned ones), summed in chunk order; fails
     /// the step when it is not finite. w itself is computed again from z and jw by the update that follows.
     /// </summary>
-    private double ApplySystemMatrix(ILinearizableSystem system, ConjugateGradientPasses passes, double time, double end)
+    private double ApplySystemMatrix(
+        ILinearizableSystem system, IJacobianProductTail? tail, ConjugateGradientPasses passes, double time, double end)
     {
         // jw is 0 here: every pass that reads it last (the right-hand side, the residual, the update that takes
         // w = M z - jw) clears it as it goes, so no separate pass clears it before each product. (A solve that ends
         // on delta <= 0 right after this product leaves it J z; the next step clears it at its start.)
-        system.AddJacobianProduct(passes.Z, passes.JacobianProduct);
+        AddProduct(system, tail, passes.Z, passes.JacobianProduct);
         var zw = passes.MassMinusJacobian();
         if (!DoubleChecks.IsFinite(zw))
         {
@@ -471,6 +479,21 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         }
 
         return zw;
+    }
+
+    /// <summary>
+    /// jw += J w; with a uniform tail, only the terms before it (the pass that reads jw next adds the tail).
+    /// </summary>
+    private static void AddProduct(ILinearizableSystem system, IJacobianProductTail? tail, double[] w, double[] jw)
+    {
+        if (tail is not null)
+        {
+            tail.AddJacobianProductBeforeTail(w, jw);
+        }
+        else
+        {
+            system.AddJacobianProduct(w, jw);
+        }
     }
 
     /// <summary>Newton on G(y) = y - y0 - h f(t + h, y) = 0, with a forward-difference Jacobian and partial-pivot LU.</summary>
