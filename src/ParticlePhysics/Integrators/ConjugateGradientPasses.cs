@@ -12,8 +12,10 @@ namespace ParticlePhysics.Integrators;
 /// </summary>
 /// <remarks>
 /// The vectors, 3 values per particle: b the right-hand side, dv the solution, r = b - A dv the residual, z = P r the
-/// preconditioned residual, p the search direction and s = A p; jw receives the system's J times a vector, and the
-/// pass that reads it last leaves it 0 for the next product (no pass of its own clears it). w = A z = M z - J z is
+/// preconditioned residual, p the search direction and s = A p; jw receives the system's J times a vector (without
+/// its uniform tail c w when the system has one, which the residual and z . w passes add before they use jw: see
+/// <see cref="SetProductTail"/>), and the pass that reads it last leaves it 0 for the next product (no pass of its own
+/// clears it). w = A z = M z - J z is
 /// never stored: the pass after the product sums z . w from z and jw (and leaves jw), and the update, which needs w
 /// once, computes it again from the same two (the same operations, so the same bits as a stored w) and clears jw,
 /// which saves writing and re-reading a vector every iteration; the blocks (9 values
@@ -92,7 +94,10 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     /// <summary>The preconditioned residual z.</summary>
     public double[] Z { get; private set; } = Array.Empty<double>();
 
-    /// <summary>The system's J times a vector, which <see cref="Residual"/>, <see cref="MassMinusJacobian"/> and the update read.</summary>
+    /// <summary>
+    /// The system's J times a vector, which <see cref="Residual"/>, <see cref="MassMinusJacobian"/> and the update read;
+    /// with a product tail (<see cref="SetProductTail"/>), J w without c w until one of the first two adds it.
+    /// </summary>
     public double[] JacobianProduct { get; private set; } = Array.Empty<double>();
 
     /// <summary>The diagonal blocks J_ii (9 values per particle, row-major), as the forces added them.</summary>

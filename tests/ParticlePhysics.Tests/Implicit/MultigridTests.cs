@@ -115,12 +115,13 @@ public class MultigridTests
         StateMetrics.Run(alone, solver, Frame, 20);
         Assert.Equal(0, GC.GetAllocatedBytesForCurrentThread() - start);
 
-        // On a runner, measured from the sixth step: the first builds the hierarchy, and the next four are the warm
-        // starts from one to four remembered steps, each path's first run (the one-thread part above measures them
-        // from the second step). In 2 of some 20 runs of the whole Debug suite, the second step on a runner allocated
-        // about 6 KB on the calling thread, inside the force and linearisation pass, and at no later step; it
-        // never happened with the test alone (40 runs), nor with a probe that timed each part of that pass (8 runs of
-        // the suite), so its cause was not found. Each step is measured on its own, so that a failure names the step.
+        // On a runner, measured from the sixth step (the first builds the hierarchy; the next four are the warm starts
+        // from one to four remembered steps, which the one-thread part above measures from the second step). In 2 of
+        // some 20 runs of the whole Debug suite, the second step on a runner allocated about 6 KB on the calling
+        // thread, inside the force and linearisation pass, which runs at every step; never at a later step, never with
+        // the test alone (40 runs) nor with a probe that timed each part of that pass (8 runs of the suite). Its cause
+        // was not found: measuring from the sixth step works around that one-off, it does not explain it. Each step is
+        // measured on its own, so that a step that allocates after these five fails with its number.
         using var runner = new WorkerThreadRunner(2);
         var system = Cloth(64);
         system.Runner = runner;
