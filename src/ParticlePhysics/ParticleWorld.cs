@@ -53,11 +53,11 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
     // Bumped whenever particles or generators are added or removed: products and blocks need a Linearize of the
     // world as it is (its buffers' sizes and its generators' linearisations follow the particles and the generators).
     private int _structureVersion;
+    private int _linearizedVersion = -1;
 
     // This world's number among the worlds of the process (ICouplingRevision: a revision no other world gives).
     private static long _worldsCreated;
     private readonly long _worldNumber = System.Threading.Interlocked.Increment(ref _worldsCreated);
-    private int _linearizedVersion = -1;
     private bool _stepping;
     private int _frameDepth; // open FixedTimestepDriver frames: their steps leave the constraint sets' bracket to them
     private double _time;

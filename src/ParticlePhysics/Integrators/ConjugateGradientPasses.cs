@@ -39,11 +39,11 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 
 
     private readonly double[] _partial = new double[AggregationMultigrid.Chunks];
-    private bool _hasTail;
-    private double _tail;
     private readonly double[] _secondPartial = new double[AggregationMultigrid.Chunks];
     // The sums of WarmStartGram, each per chunk: u_a . q_c for a, c < count (row-major), then u_a . b.
     private readonly double[][] _gramPartials = NewPartials((WarmStartHistory.Depth * WarmStartHistory.Depth) + WarmStartHistory.Depth);
+    private bool _hasTail; // whether this step's products leave out a uniform last term c w (SetProductTail), and c
+    private double _tail;
     // The vectors of the warm start passes (pinned for the pass's duration) and their count.
     private readonly IntPtr[] _startVectors = new IntPtr[WarmStartHistory.Depth];
     private readonly IntPtr[] _startProducts = new IntPtr[WarmStartHistory.Depth];
@@ -430,13 +430,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                         continue;
                     }
 
-                    if (_hasTail)
-                    {
-                        // The product's last term, as the force would have added it: jw[k] += c dv[k].
-                        jw[0] += _tail * x[0];
-                        jw[1] += _tail * x[1];
-                        jw[2] += _tail * x[2];
-                    }
+                    AddTail(jw, x);
 
                     var m = _pMasses[i];
                     r[0] = bi[0] - ((m * x[0]) - jw[0]);
@@ -460,13 +454,7 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
                         continue;
                     }
 
-                    if (_hasTail)
-                    {
-                        // The product's last term, as the force would have added it: jw[k] += c z[k], kept for the update.
-                        jw[0] += _tail * z[0];
-                        jw[1] += _tail * z[1];
-                        jw[2] += _tail * z[2];
-                    }
+                    AddTail(jw, z); // (kept in jw for the update)
 
                     var m = _pMasses[i];
                     double wx = (m * z[0]) - jw[0], wy = (m * z[1]) - jw[1], wz = (m * z[2]) - jw[2];
@@ -657,6 +645,18 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         for (; k < end; k++)
         {
             _ = UpdateComponent(z, jw, masses[k], p, s, dv, r, alpha, beta, k);
+        }
+    }
+
+    /// <summary>The product's uniform tail at one particle, when there is one, as the force would have added it: jw[k] += c w[k].</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private void AddTail(double* jw, double* w)
+    {
+        if (_hasTail)
+        {
+            jw[0] += _tail * w[0];
+            jw[1] += _tail * w[1];
+            jw[2] += _tail * w[2];
         }
     }
 

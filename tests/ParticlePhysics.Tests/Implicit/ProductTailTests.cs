@@ -81,16 +81,10 @@ public class ProductTailTests
     [Fact]
     public void The_product_before_the_tail_needs_a_linearisation_and_a_tail()
     {
-        var world = new ParticleWorld();
-        world.AddParticle(Vector3d.Zero, 1.0);
-        world.AddParticle(new Vector3d(1.2, 0, 0), 1.0);
-        var springs = new SpringNetwork(world);
-        springs.Add(0, 1, 10.0, 1.0);
-        world.AddForce(springs);
-        world.AddForce(new LinearDrag(0.5));
+        var world = World(w => new IForceGenerator[] { Springs(w), new LinearDrag(0.5) });
         var split = (IJacobianProductTail)world;
-        var w = new double[6];
-        var result = new double[6];
+        var w = new double[3 * world.Count];
+        var result = new double[3 * world.Count];
         Assert.False(split.TryGetUniformTail(out _)); // not linearised yet
         Assert.Throws<InvalidOperationException>(() => split.AddJacobianProductBeforeTail(w, result));
 
@@ -105,6 +99,7 @@ public class ProductTailTests
     public void The_product_before_the_tail_plus_c_w_is_the_whole_product()
     {
         var world = World(w => new IForceGenerator[] { Springs(w), new LinearDrag(0.5), Gravity.Down(9.81) });
+        Linearize(world);
         var random = new Random(7);
         var x = Enumerable.Range(0, 3 * world.Count).Select(_ => random.NextDouble() - 0.5).ToArray();
         var whole = new double[x.Length];
@@ -145,7 +140,6 @@ public class ProductTailTests
             world.AddForce(generator);
         }
 
-        Linearize(world);
         return world;
     }
 
