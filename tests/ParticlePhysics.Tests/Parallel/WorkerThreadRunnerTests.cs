@@ -9,8 +9,10 @@ namespace ParticlePhysics.Tests.Parallel;
 /// <summary>
 /// The runner's hand-off protocol: every chunk exactly once per run whatever the timing, no lost wake-up (a run that
 /// needs every worker at once completes), no signal sent twice, failures rethrown after the other chunks, and the
-/// edges (parallelism 1, chunk counts 0 and 1, disposal, misuse). Each stress test has a time budget of about a
-/// second and a watchdog that fails it, rather than hanging, if a run never returns.
+/// edges (parallelism 1, chunk counts 0 and 1, disposal, misuse). Each stress test runs for about a second, and for
+/// at least a fixed number of runs however long they take (a loaded machine gives fewer runs per second: 821 instead
+/// of some 60 000 in a second, seen while two other processes kept both cores busy), with a watchdog that fails it,
+/// rather than hanging, if a run never returns.
 /// </summary>
 public class WorkerThreadRunnerTests
 {
@@ -49,7 +51,7 @@ public class WorkerThreadRunnerTests
         WithWatchdog(() =>
         {
             var clock = Stopwatch.StartNew();
-            while (clock.Elapsed < _budget && runs < 2_000_000)
+            while ((clock.Elapsed < _budget || runs < 1000) && runs < 2_000_000)
             {
                 // Mostly tiny runs of a few chunks; now and then more chunks than threads, 0 or 1 chunk, chunks that
                 // pause, yield or sleep, and pauses between runs on either side of the spin limit.
@@ -73,7 +75,6 @@ public class WorkerThreadRunnerTests
 
         Assert.Equal(0, runner.DoubleSignals);
         _output.WriteLine($"{parallelism} threads, {mode}: {runs} runs, {chunks} chunks, {runner.Sleeps} sleeps, {runner.SpinningWaits} spinning waits");
-        Assert.True(runs >= 1000, $"only {runs} runs in {_budget}");
     }
 
     [Theory]
@@ -91,7 +92,7 @@ public class WorkerThreadRunnerTests
         WithWatchdog(() =>
         {
             var clock = Stopwatch.StartNew();
-            while (clock.Elapsed < _budget && runs < 5_000_000)
+            while ((clock.Elapsed < _budget || runs < 1000) && runs < 5_000_000)
             {
                 seed = unchecked((seed * 1664525u) + 1013904223u);
                 var chunkCount = 1 + (int)((seed >> 16) % (uint)((2 * parallelism) + 1));
@@ -107,7 +108,6 @@ public class WorkerThreadRunnerTests
 
         Assert.Equal(0, runner.DoubleSignals);
         _output.WriteLine($"{parallelism} threads: {runs} runs, {runner.Sleeps} sleeps, {runner.SpinningWaits} spinning waits");
-        Assert.True(runs >= 1000, $"only {runs} runs in {_budget}");
     }
 
     [Theory]
@@ -123,7 +123,7 @@ public class WorkerThreadRunnerTests
         WithWatchdog(() =>
         {
             var clock = Stopwatch.StartNew();
-            while (clock.Elapsed < _budget && runs < 100_000)
+            while ((clock.Elapsed < _budget || runs < 100) && runs < 100_000)
             {
                 work.Reset();
                 runner.Run(work, parallelism);
@@ -134,7 +134,6 @@ public class WorkerThreadRunnerTests
 
         Assert.Equal(0, runner.DoubleSignals);
         _output.WriteLine($"{parallelism} threads, {mode}: {runs} runs, {runner.Sleeps} sleeps, {runner.SpinningWaits} spinning waits");
-        Assert.True(runs >= 100, $"only {runs} runs in {_budget}");
     }
 
     [Theory]
