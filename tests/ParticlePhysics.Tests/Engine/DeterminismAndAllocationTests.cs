@@ -58,10 +58,7 @@ public class DeterminismAndAllocationTests
         var system = new ClothScenario().Build();
         var method = IntegratorCatalog.Create(integrator);
         StateMetrics.Run(system, method, 0.001, 5);
-        var before = GC.GetAllocatedBytesForCurrentThread();
-        StateMetrics.Run(system, method, 0.001, 500);
-        var allocated = GC.GetAllocatedBytesForCurrentThread() - before;
-        Assert.Equal(0, allocated);
+        Assert.Equal(0, ThreadAllocations.Measure(() => StateMetrics.Run(system, method, 0.001, 500)));
     }
 
     [Fact]
@@ -70,13 +67,13 @@ public class DeterminismAndAllocationTests
         var simulation = new OdeSimulation(new GaussianDecayOde(), new[] { 1.0 });
         var rk45 = new DormandPrince45();
         simulation.Step(rk45, 0.01);
-        var before = GC.GetAllocatedBytesForCurrentThread();
-        for (var s = 0; s < 150; s++)
+        Assert.Equal(0, ThreadAllocations.Measure(() =>
         {
-            simulation.Step(rk45, 0.01);
-        }
-
-        Assert.Equal(0, GC.GetAllocatedBytesForCurrentThread() - before);
+            for (var s = 0; s < 150; s++)
+            {
+                simulation.Step(rk45, 0.01);
+            }
+        }));
     }
 
     private static string ClothHash(string integrator, int steps)

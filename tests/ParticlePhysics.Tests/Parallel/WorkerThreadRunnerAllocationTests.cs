@@ -31,7 +31,28 @@ public class WorkerThreadRunnerAllocationTests
             runner.Run(work, 1 + (i % (2 * parallelism)));
         }
 
-        // Every thread takes one chunk of a run that needs all of them at once, and notes its allocated bytes.
+        // Every thread's count over 20 000 runs, measured again when it is not zero, as ThreadAllocations.Measure does
+        // (the runtime's per-thread count now and then reports bytes that were not allocated; see there).
+        var counted = string.Empty;
+        for (var attempt = 0; attempt < ThreadAllocations.Attempts; attempt++)
+        {
+            counted = CountOverRuns(runner, probe, work, pauses, parallelism);
+            if (counted.Length == 0)
+            {
+                break;
+            }
+        }
+
+        Assert.True(counted.Length == 0, counted);
+    }
+
+    /// <summary>
+    /// Runs the work 20 000 times with the given pauses between runs; returns the bytes that the threads allocated over
+    /// them ("" when none did). Each thread takes one chunk of a run that needs all of them at once, before and after,
+    /// and notes its count.
+    /// </summary>
+    private static string CountOverRuns(WorkerThreadRunner runner, AllocationProbe probe, TinyWork work, int[] pauses, int parallelism)
+    {
         probe.Reset(first: true);
         runner.Run(probe, parallelism);
         var callerBefore = GC.GetAllocatedBytesForCurrentThread();
@@ -51,12 +72,15 @@ public class WorkerThreadRunnerAllocationTests
         var callerAllocated = GC.GetAllocatedBytesForCurrentThread() - callerBefore;
         probe.Reset(first: false);
         runner.Run(probe, parallelism);
-        Assert.Equal(0, callerAllocated);
+        var counted = callerAllocated == 0 ? string.Empty : $"the caller: {callerAllocated} bytes; ";
         for (var t = 0; t < parallelism; t++)
         {
             Assert.True(probe.Thread[t] == probe.ThreadAfter[t], $"chunk {t} ran on two different threads");
-            Assert.Equal(0, probe.After[t] - probe.Before[t]);
+            var bytes = probe.After[t] - probe.Before[t];
+            counted += bytes == 0 ? string.Empty : $"the thread of chunk {t}: {bytes} bytes; ";
         }
+
+        return counted;
     }
 
     private sealed class TinyWork : IParallelWork

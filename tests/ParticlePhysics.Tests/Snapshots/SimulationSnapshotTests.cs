@@ -202,14 +202,14 @@ public class SimulationSnapshotTests
         var rk45 = new DormandPrince45();
         var snapshot = SimulationSnapshot.Capture(system, rk45);
         snapshot.RestoreTo(system, rk45);
-        var before = GC.GetAllocatedBytesForCurrentThread();
-        for (var i = 0; i < 20; i++)
+        Assert.Equal(0, ThreadAllocations.Measure(() =>
         {
-            snapshot.CaptureFrom(system, rk45);
-            snapshot.RestoreTo(system, rk45);
-        }
-
-        Assert.Equal(0, GC.GetAllocatedBytesForCurrentThread() - before);
+            for (var i = 0; i < 20; i++)
+            {
+                snapshot.CaptureFrom(system, rk45);
+                snapshot.RestoreTo(system, rk45);
+            }
+        }));
     }
 
     [Theory]
