@@ -8,6 +8,7 @@
 # 0.19 s x the median ratio is the working tree's time there. Needs git history, the .NET SDK, sed and tar.
 #   in-process.sh [rounds] [tolerance B] [tolerance A] [n]     defaults: 40 rounds, 1e-3, 1e-3, 64
 #   A=<commit> in-process.sh ...    another library for A;  B=<commit> in-process.sh ...  a commit instead of the working tree
+#   RUNNER=2 in-process.sh ...      both sides step on a WorkerThreadRunner(2) of their own library (two threads)
 # (The same commit on both sides with two tolerances measures the ratio of the two, as for 1e-6 against 1e-3.)
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"

@@ -1,5 +1,6 @@
 using System;
 using System.Diagnostics;
+using System.Linq;
 using System.Threading;
 using ParticlePhysics.Parallel;
 using Xunit.Abstractions;
@@ -134,6 +135,40 @@ public class WorkerThreadRunnerTests
 
         Assert.Equal(0, runner.DoubleSignals);
         _output.WriteLine($"{parallelism} threads, {mode}: {runs} runs, {runner.Sleeps} sleeps, {runner.SpinningWaits} spinning waits");
+    }
+
+    [Theory]
+    [MemberData(nameof(Configurations))]
+    public void Each_thread_runs_the_chunks_of_its_own_share_first_so_a_chunk_keeps_its_thread_from_run_to_run(int parallelism, string mode)
+    {
+        // A run of p chunks that must all run at once (each waits for the others), so that no thread can take a
+        // second chunk before every chunk has a thread: each thread takes the first chunk of its own share, chunk t for
+        // thread t, the caller chunk 0. So chunk t runs on the same thread in every run, the cache locality that the
+        // shares are for (a shared counter gives a chunk to whichever thread comes first).
+        using var runner = Create(parallelism, mode);
+        var work = new RendezvousWork(parallelism);
+        var first = new int[parallelism];
+        var caller = 0;
+        WithWatchdog(() =>
+        {
+            caller = Environment.CurrentManagedThreadId;
+            var random = new Random(parallelism * 7 + mode.Length);
+            for (var run = 0; run < 50; run++)
+            {
+                work.Reset();
+                runner.Run(work, parallelism);
+                if (run == 0)
+                {
+                    work.Threads.CopyTo(first, 0);
+                }
+
+                Assert.Equal(first, work.Threads);
+                Pause(random);
+            }
+        });
+
+        Assert.Equal(caller, first[0]);
+        Assert.Equal(parallelism, first.Distinct().Count());
     }
 
     [Theory]
@@ -426,7 +461,7 @@ public class WorkerThreadRunnerTests
         }
     }
 
-    /// <summary>Every chunk waits until all are running at once (10 s at most, then it throws).</summary>
+    /// <summary>Every chunk waits until all are running at once (10 s at most, then it throws); notes its thread.</summary>
     private sealed class RendezvousWork : IParallelWork
     {
         private readonly int _parties;
@@ -435,12 +470,17 @@ public class WorkerThreadRunnerTests
         public RendezvousWork(int parties)
         {
             _parties = parties;
+            Threads = new int[parties];
         }
+
+        /// <summary>The managed thread id that ran each chunk in the last run.</summary>
+        public int[] Threads { get; }
 
         public void Reset() => _arrived = 0;
 
         public void Execute(int chunk, int chunkCount)
         {
+            Threads[chunk] = Environment.CurrentManagedThreadId;
             Interlocked.Increment(ref _arrived);
             var clock = Stopwatch.StartNew();
             var spinner = default(SpinWait);
