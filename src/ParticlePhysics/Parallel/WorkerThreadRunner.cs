@@ -21,9 +21,9 @@ namespace ParticlePhysics.Parallel;
 /// <para><b>Shares.</b> With p threads (the caller is thread 0, worker t - 1 is thread t) and c chunks, thread t's
 /// share is the chunks from ceil(t c / p) to ceil((t + 1) c / p). The engine's passes split the same particles into
 /// the same chunks every time, so a thread that runs its own share finds its chunks' data where its last pass left
-/// it, in its core's cache (measured on the 64 x 64 cloth under implicit Euler on two threads: 1.70x one core's
-/// speed, against 1.61x when every thread took the next chunk of one shared counter; docs/benchmarks.md). Results do
-/// not depend on it: a share decides who runs a chunk first, never what it computes.</para>
+/// it, in its core's cache (implicit Euler on the 64 x 64 cloth, two threads: 1.70x to 1.75x one core's speed, where
+/// one counter shared by every thread, the runner before, gave 1.55x to 1.67x; docs/benchmarks.md, "Shares of a run").
+/// Results do not depend on it: a share decides who runs a chunk first, never what it computes.</para>
 /// <para><b>The protocol.</b> The shared state of a run is its work, its chunk count, the end of each share,
 /// <c>_finished</c> (chunks done), <c>_failure</c> and, per share, one 64-bit claim word: the run's number in the high
 /// 32 bits, the share's next unclaimed chunk in the low 32 (each word alone on its cache line).</para>
@@ -33,19 +33,22 @@ namespace ParticlePhysics.Parallel;
 /// <c>_finished = 0</c> and <c>_failure = null</c> with plain writes, and opens run r in every share with
 /// <c>Interlocked.Exchange(word, (r, the share's first chunk))</c>, a full fence: a thread that reads run number r from
 /// a word sees those writes.</item>
-/// <item>It then wakes, with <see cref="HandOffWaiter.Wake"/>, as many workers as the run has chunks beyond its own
-/// first (a worker waits for its own share's word to show a new run; a spinning worker needs no wake; see
-/// <see cref="HandOffWaiter"/> for why a wake-up cannot be lost).</item>
+/// <item>It then wakes, with <see cref="HandOffWaiter.Wake"/>, the workers whose shares have chunks (all of them
+/// when the run has as many chunks as threads; with fewer, the owners of the chunks). A worker waits for its own
+/// share's word to show a new run; a spinning worker needs no wake; see <see cref="HandOffWaiter"/> for why a wake-up
+/// cannot be lost.</item>
 /// <item>Every thread, the caller included, claims the chunks of its own share, then of the next shares in turn
 /// (t + 1, t + 2, ... modulo p), by compare-exchange of the share's word from (r, i) to (r, i + 1), after reading
-/// (r, i) and then the count and the share's end above i. A word never takes the same value twice (the run number
+/// (r, i) and then the count, and the share's end above i. A word never takes the same value twice (the run number
 /// grows, and within a run the index only grows until the run is closed), so a thread holding a stale value fails
 /// its compare-exchange: a chunk is claimed once, and only for its own run. A claim that succeeds means the word held
 /// (r, i) from the thread's read of it to its compare-exchange, so the count and end read in between were run r's
 /// (the caller rewrites them only after closing every share of run r, which changes the word; without the close, a
 /// thread that read (r, end of r) could read the next run's larger end and claim a chunk past the end of run r's
 /// share). Run r cannot finish before its claimed chunk i does, so the work that the claimer reads after its claim
-/// is run r's too. A share whose word shows another run (not yet opened, or a later run) has nothing for run r.</item>
+/// is run r's too. A thread leaves a share whose word shows another run than its own (not yet opened for run r, or
+/// opened for a later one): what a worker leaves so, the caller takes, since it opens every share before it drains
+/// any and visits every share.</item>
 /// <item>After a chunk (whether it returned or threw; an exception is kept in <c>_failure</c> by compare-exchange, the
 /// first one wins) the thread increments <c>_finished</c> (interlocked); the one that brings it to the count wakes
 /// the caller if it waits.</item>
@@ -156,6 +159,9 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
 
     /// <summary>How many times the waiting threads slept and were signalled (for the tests and benchmarks).</summary>
     internal long Sleeps => SumOverWaiters(w => w.Signals);
+
+    /// <summary>How many times worker <paramref name="worker"/> (share worker + 1) slept and was signalled (for the tests).</summary>
+    internal long WorkerSignals(int worker) => _workers[worker].Signals;
 
     /// <summary>Signals sent twice to a waiter: 0 unless the hand-off protocol is broken (for the tests).</summary>
     internal long DoubleSignals => SumOverWaiters(w => w.DoubleSignals);
@@ -280,11 +286,14 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
             Interlocked.Exchange(ref _claims[Word(t)], ((long)run << 32) | (uint)ShareStart(t, chunkCount));
         }
 
-        // Wake only the workers that can get a chunk; the others sleep on, or join if they are spinning anyway.
-        var wake = Math.Min(_workers.Length, chunkCount - 1);
-        for (var t = 0; t < wake; t++)
+        // Wake the owners of the other shares that have chunks (every worker unless the run has fewer chunks than
+        // threads); the others sleep on, or take chunks of other shares if they are spinning anyway.
+        for (var t = 0; t < _workers.Length; t++)
         {
-            _workers[t].Wake();
+            if (ShareStart(t + 1, chunkCount) < _shareEnds[t + 1])
+            {
+                _workers[t].Wake();
+            }
         }
 
         Drain(run, 0);
@@ -333,13 +342,15 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
     }
 
     /// <summary>
-    /// Claims and executes chunks of run <paramref name="run"/> in share <paramref name="share"/> until it has none
-    /// left (true) or this thread finished the run's last chunk (false: nothing is left anywhere).
+    /// Claims and executes chunks of run <paramref name="run"/> in share <paramref name="share"/> until the share has
+    /// none left for this run or shows another run (true), or this thread finished the run's last chunk (false:
+    /// nothing is left anywhere).
     /// </summary>
     private bool DrainShare(uint run, int share)
     {
         // Bounded: each pass claims a chunk, or finds the share empty or in another run, or fails a compare-exchange
-        // because another thread claimed a chunk of it meanwhile, which happens at most chunkCount times per run.
+        // because the word changed meanwhile (another thread's claim, at most chunkCount per run, or the caller's
+        // close or open of a run, after which the next pass returns).
         ref var word = ref _claims[Word(share)];
         while (true)
         {

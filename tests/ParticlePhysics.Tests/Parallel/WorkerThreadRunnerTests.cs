@@ -172,6 +172,53 @@ public class WorkerThreadRunnerTests
     }
 
     [Theory]
+    [InlineData(4, 2)]
+    [InlineData(4, 3)]
+    [InlineData(5, 3)]
+    public void With_fewer_chunks_than_threads_only_the_owners_of_the_chunks_are_woken(int parallelism, int chunks)
+    {
+        // A runner that never spins, so that its workers sleep between runs and each wake-up is a signal they count.
+        // Runs of c < p chunks (share t: chunks ceil(t c / p) to ceil((t + 1) c / p), some of them empty) wake the
+        // workers whose shares hold chunks, never the others, which are therefore signalled nothing, whatever the
+        // timing. (Waking the first c - 1 workers instead, as a runner with one shared counter may, wakes the wrong
+        // ones: for 4 threads and 2 chunks worker 1, whose share is empty, rather than worker 2, which owns chunk 1.)
+        using var runner = Create(parallelism, "never-spin");
+        var work = new CheckedWork(64);
+        var owns = new bool[parallelism - 1];
+        long[] before = new long[parallelism - 1];
+        WithWatchdog(() =>
+        {
+            // First a run that needs every thread at once: every worker has woken, and counted its signal, when it ends.
+            runner.Run(new RendezvousWork(parallelism), parallelism);
+            for (var t = 0; t < owns.Length; t++)
+            {
+                owns[t] = ShareStart(t + 1, chunks, parallelism) < ShareStart(t + 2, chunks, parallelism);
+                before[t] = runner.WorkerSignals(t);
+            }
+
+            for (var run = 1; run <= 50; run++)
+            {
+                work.Expect(chunks);
+                runner.Run(work, chunks);
+                work.Check(chunks, run);
+                Thread.Sleep(1); // the workers go back to sleep
+            }
+        });
+
+        Assert.Equal(chunks - 1, owns.Count(owner => owner));
+        for (var t = 0; t < owns.Length; t++)
+        {
+            if (!owns[t])
+            {
+                Assert.True(before[t] == runner.WorkerSignals(t), $"worker {t} (share {t + 1}, no chunk of {chunks}) was woken {runner.WorkerSignals(t) - before[t]} times");
+            }
+        }
+    }
+
+    private static int ShareStart(int share, int chunks, int parallelism) =>
+        (int)((((long)share * chunks) + parallelism - 1) / parallelism);
+
+    [Theory]
     [InlineData(1)]
     [InlineData(3)]
     public void A_failing_chunk_is_rethrown_after_every_other_chunk_has_finished(int parallelism)
