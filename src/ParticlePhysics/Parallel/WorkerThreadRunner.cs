@@ -283,14 +283,14 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
         for (var t = 0; t < shares; t++)
         {
             // Open it (each exchange a full fence: a claimer that reads the run's number sees the fields above).
-            Interlocked.Exchange(ref _claims[Word(t)], ((long)run << 32) | (uint)ShareStart(t, chunkCount));
+            Interlocked.Exchange(ref _claims[Word(t)], ((long)run << 32) | (uint)(t == 0 ? 0 : _shareEnds[t - 1]));
         }
 
         // Wake the owners of the other shares that have chunks (every worker unless the run has fewer chunks than
         // threads); the others sleep on, or take chunks of other shares if they are spinning anyway.
         for (var t = 0; t < _workers.Length; t++)
         {
-            if (ShareStart(t + 1, chunkCount) < _shareEnds[t + 1])
+            if (_shareEnds[t] < _shareEnds[t + 1]) // (share t + 1 runs from the end of share t to its own end)
             {
                 _workers[t].Wake();
             }
