@@ -24,10 +24,7 @@ public class ProductTailTests
         // of its own (no tail), then the same gravity after it: the same generators in the same order, the same
         // operations on every value, so the same bits whether the passes or the drag add c w.
         var builder = new ClothBuilder { Rows = 24, Columns = 24 };
-        var withTail = builder.Build().System;
-        var withoutTail = new ParticleWorld(0);
-        builder.AddTo(withoutTail);
-        withoutTail.AddForce(Gravity.Down(builder.Gravity));
+        var (withTail, withoutTail) = Pair(builder);
         Assert.Equal(withTail.Forces.Count, withoutTail.Forces.Count);
 
         var a = new ImplicitEuler { Tolerance = 1e-6 };
@@ -52,11 +49,8 @@ public class ProductTailTests
         using var runner = new WorkerThreadRunner(2);
         foreach (var preconditioner in new[] { ImplicitPreconditioner.Multigrid, ImplicitPreconditioner.BlockJacobi })
         {
-            var withTail = builder.Build().System;
+            var (withTail, withoutTail) = Pair(builder);
             withTail.Runner = runner;
-            var withoutTail = new ParticleWorld(0);
-            builder.AddTo(withoutTail);
-            withoutTail.AddForce(Gravity.Down(builder.Gravity));
             var a = new ImplicitEuler { Preconditioner = preconditioner };
             var b = new ImplicitEuler { Preconditioner = preconditioner };
             StateMetrics.Run(withTail, a, Frame, 20);
@@ -114,6 +108,18 @@ public class ProductTailTests
         }
 
         Assert.Equal(whole, before);
+    }
+
+    /// <summary>
+    /// The builder's cloth twice: as Build() makes it, with a drag on every particle (a uniform tail), and by AddTo(),
+    /// whose drag lists every particle (no tail), followed by the same gravity.
+    /// </summary>
+    private static (ParticleWorld WithTail, ParticleWorld WithoutTail) Pair(ClothBuilder builder)
+    {
+        var withoutTail = new ParticleWorld(0);
+        builder.AddTo(withoutTail);
+        withoutTail.AddForce(Gravity.Down(builder.Gravity));
+        return (builder.Build().System, withoutTail);
     }
 
     private static bool Tail(ParticleWorld world, out double coefficient)
