@@ -353,6 +353,12 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         }
     }
 
+    /// <inheritdoc />
+    /// <remarks>
+    /// Each pass is a method of its own, its vectors' addresses and its sums in locals: in one method with a switch over
+    /// the passes, the sums lived on the stack (every addition a store and a load) and the fields were read again after
+    /// every store through a pointer.
+    /// </remarks>
     public void Execute(int chunk, int chunkCount)
     {
         var (begin, end) = Chunk.Range(chunk, chunkCount, _particles);
@@ -361,133 +367,28 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         switch (_operation)
         {
             case RightHandSidePass:
-                for (var i = begin; i < end; i++)
-                {
-                    var o = 3 * i;
-                    double* bi = _pB + o, f = _a + o, jw = _pJw + o;
-                    if (_pInverseMasses[i] == 0.0)
-                    {
-                        bi[0] = bi[1] = bi[2] = 0.0;
-                        jw[0] = jw[1] = jw[2] = 0.0;
-                        continue;
-                    }
-
-                    var h = _scalar;
-                    bi[0] = h * (f[0] + (h * jw[0]));
-                    bi[1] = h * (f[1] + (h * jw[1]));
-                    bi[2] = h * (f[2] + (h * jw[2]));
-                    jw[0] = jw[1] = jw[2] = 0.0;
-                    sum += bi[0] * bi[0];
-                    sum += bi[1] * bi[1];
-                    sum += bi[2] * bi[2];
-                }
-
+                sum = RightHandSideChunk(begin, end);
                 break;
             case WarmStartPass:
                 WarmStartChunk(begin, end);
                 break;
             case WarmStartGramPass:
-                {
-                    // Row a of the sums, u_a . q_0 .. q_{count-1} and u_a . b, in one sweep of the chunk per row: six
-                    // vectors at a time keep their sums in registers (all of them at once would not), and the chunk's
-                    // vectors stay in the cache between the sweeps. Each sum in increasing coordinate order.
-                    var count = _startCount;
-                    var sums = stackalloc double[10];
-                    for (var a = 0; a < count; a += 2)
-                    {
-                        var rows = Math.Min(2, count - a);
-                        GramRows(a, rows, begin, end, sums);
-                        for (var row = 0; row < rows; row++)
-                        {
-                            for (var c = 0; c < count; c++)
-                            {
-                                _gramPartials[((a + row) * count) + c][chunk] = sums[(5 * row) + c];
-                            }
-
-                            _gramPartials[(count * count) + a + row][chunk] = sums[(5 * row) + 4];
-                        }
-                    }
-
-                    break;
-                }
-
+                WarmStartGramChunk(chunk, begin, end);
+                break;
             case SolutionProductPass:
-                for (var k = 3 * begin; k < 3 * end; k++)
-                {
-                    _a[k] = _pInverseMasses[k / 3] == 0.0 ? 0.0 : _pB[k] - _pR[k];
-                }
-
+                SolutionProductChunk(begin, end);
                 break;
             case ResidualPass:
-                for (var i = begin; i < end; i++)
-                {
-                    var o = 3 * i;
-                    double* x = _pDv + o, r = _pR + o, bi = _pB + o, jw = _pJw + o;
-                    if (_pInverseMasses[i] == 0.0)
-                    {
-                        r[0] = r[1] = r[2] = 0.0;
-                        jw[0] = jw[1] = jw[2] = 0.0;
-                        continue;
-                    }
-
-                    AddTail(jw, x);
-
-                    var m = _pMasses[i];
-                    r[0] = bi[0] - ((m * x[0]) - jw[0]);
-                    r[1] = bi[1] - ((m * x[1]) - jw[1]);
-                    r[2] = bi[2] - ((m * x[2]) - jw[2]);
-                    jw[0] = jw[1] = jw[2] = 0.0;
-                    sum += r[0] * r[0];
-                    sum += r[1] * r[1];
-                    sum += r[2] * r[2];
-                }
-
+                sum = ResidualChunk(begin, end);
                 break;
             case MassMinusJacobianPass:
-                for (var i = begin; i < end; i++)
-                {
-                    var o = 3 * i;
-                    double* z = _pZ + o, jw = _pJw + o;
-                    if (_pInverseMasses[i] == 0.0)
-                    {
-                        jw[0] = jw[1] = jw[2] = 0.0; // (z is 0 here, so the update's w = M z - jw is 0)
-                        continue;
-                    }
-
-                    AddTail(jw, z); // (kept in jw for the update)
-
-                    var m = _pMasses[i];
-                    double wx = (m * z[0]) - jw[0], wy = (m * z[1]) - jw[1], wz = (m * z[2]) - jw[2];
-                    sum += (z[0] * wx) + (z[1] * wy) + (z[2] * wz);
-                }
-
+                sum = MassMinusJacobianChunk(begin, end);
                 break;
             case UpdatePass:
-                for (var i = begin; i < end; i++)
-                {
-                    var o = 3 * i;
-                    double* m = _pInverses + (6 * i);
-                    var mass = _pMasses[i];
-                    var r0 = UpdateComponent(_pZ, _pJw, mass, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o);
-                    var r1 = UpdateComponent(_pZ, _pJw, mass, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o + 1);
-                    var r2 = UpdateComponent(_pZ, _pJw, mass, _pP, _pS, _pDv, _pR, _scalar, _secondScalar, o + 2);
-                    sum += r0 * r0;
-                    sum += r1 * r1;
-                    sum += r2 * r2;
-                    var z = _pZ + o;
-                    Blocks3.MultiplySymmetric(m, _pR + o, z); // z = D^-1 r with the r just written
-                    second += (r0 * z[0]) + (r1 * z[1]) + (r2 * z[2]);
-                }
-
+                sum = UpdateChunk(begin, end, out second);
                 break;
             case JacobiPass:
-                for (var i = begin; i < end; i++)
-                {
-                    double* r = _pR + (3 * i), z = _pZ + (3 * i);
-                    Blocks3.MultiplySymmetric(_pInverses + (6 * i), r, z);
-                    sum += (r[0] * z[0]) + (r[1] * z[1]) + (r[2] * z[2]);
-                }
-
+                sum = JacobiChunk(begin, end);
                 break;
             case InvertBlocksPass:
                 for (var i = begin; i < end; i++)
@@ -497,18 +398,193 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 
                 break;
             default:
-                for (var k = 3 * begin; k < 3 * end; k++)
-                {
-                    var v1 = _b[k] + _pDv[k];
-                    _d[k] = v1;
-                    _c[k] = _a[k] + (_scalar * v1);
-                }
-
+                EndStateChunk(begin, end);
                 break;
         }
 
         _partial[chunk] = sum;
         _secondPartial[chunk] = second;
+    }
+
+    /// <summary>b = h (f + h jw) on particles [begin, end), 0 on pinned ones, then jw = 0; returns their b . b.</summary>
+    private double RightHandSideChunk(int begin, int end)
+    {
+        double* b = _pB, force = _a, jacobian = _pJw, inverseMasses = _pInverseMasses;
+        var h = _scalar;
+        var sum = 0.0;
+        for (var i = begin; i < end; i++)
+        {
+            var o = 3 * i;
+            double* bi = b + o, f = force + o, jw = jacobian + o;
+            if (inverseMasses[i] == 0.0)
+            {
+                bi[0] = bi[1] = bi[2] = 0.0;
+                jw[0] = jw[1] = jw[2] = 0.0;
+                continue;
+            }
+
+            bi[0] = h * (f[0] + (h * jw[0]));
+            bi[1] = h * (f[1] + (h * jw[1]));
+            bi[2] = h * (f[2] + (h * jw[2]));
+            jw[0] = jw[1] = jw[2] = 0.0;
+            sum += bi[0] * bi[0];
+            sum += bi[1] * bi[1];
+            sum += bi[2] * bi[2];
+        }
+
+        return sum;
+    }
+
+    /// <summary>
+    /// Rows of the warm start's sums for one chunk, u_a . q_0 .. q_{count-1} and u_a . b, in one sweep of the chunk per
+    /// two rows: ten sums at a time keep their chains in registers (all of them at once would not), and the chunk's
+    /// vectors stay in the cache between the sweeps. Each sum in increasing coordinate order.
+    /// </summary>
+    private void WarmStartGramChunk(int chunk, int begin, int end)
+    {
+        var count = _startCount;
+        var sums = stackalloc double[10];
+        for (var a = 0; a < count; a += 2)
+        {
+            var rows = Math.Min(2, count - a);
+            GramRows(a, rows, begin, end, sums);
+            for (var row = 0; row < rows; row++)
+            {
+                for (var c = 0; c < count; c++)
+                {
+                    _gramPartials[((a + row) * count) + c][chunk] = sums[(5 * row) + c];
+                }
+
+                _gramPartials[(count * count) + a + row][chunk] = sums[(5 * row) + 4];
+            }
+        }
+    }
+
+    /// <summary>q = b - r on particles [begin, end) (q in the pass's first argument), 0 on pinned ones.</summary>
+    private void SolutionProductChunk(int begin, int end)
+    {
+        double* q = _a, b = _pB, r = _pR, inverseMasses = _pInverseMasses;
+        for (var k = 3 * begin; k < 3 * end; k++)
+        {
+            q[k] = inverseMasses[k / 3] == 0.0 ? 0.0 : b[k] - r[k];
+        }
+    }
+
+    /// <summary>r = b - (M dv - jw) on particles [begin, end) (the tail added to jw first), 0 on pinned ones, then jw = 0; returns their r . r.</summary>
+    private double ResidualChunk(int begin, int end)
+    {
+        double* dv = _pDv, residual = _pR, b = _pB, jacobian = _pJw, masses = _pMasses, inverseMasses = _pInverseMasses;
+        bool hasTail = _hasTail;
+        var tail = _tail;
+        var sum = 0.0;
+        for (var i = begin; i < end; i++)
+        {
+            var o = 3 * i;
+            double* x = dv + o, r = residual + o, bi = b + o, jw = jacobian + o;
+            if (inverseMasses[i] == 0.0)
+            {
+                r[0] = r[1] = r[2] = 0.0;
+                jw[0] = jw[1] = jw[2] = 0.0;
+                continue;
+            }
+
+            AddTail(jw, x, hasTail, tail);
+
+            var m = masses[i];
+            r[0] = bi[0] - ((m * x[0]) - jw[0]);
+            r[1] = bi[1] - ((m * x[1]) - jw[1]);
+            r[2] = bi[2] - ((m * x[2]) - jw[2]);
+            jw[0] = jw[1] = jw[2] = 0.0;
+            sum += r[0] * r[0];
+            sum += r[1] * r[1];
+            sum += r[2] * r[2];
+        }
+
+        return sum;
+    }
+
+    /// <summary>
+    /// z . w with w = M z - jw on particles [begin, end) (the tail added to jw first and kept there), jw = 0 on pinned
+    /// ones; returns the sum.
+    /// </summary>
+    private double MassMinusJacobianChunk(int begin, int end)
+    {
+        double* preconditioned = _pZ, jacobian = _pJw, masses = _pMasses, inverseMasses = _pInverseMasses;
+        bool hasTail = _hasTail;
+        var tail = _tail;
+        var sum = 0.0;
+        for (var i = begin; i < end; i++)
+        {
+            var o = 3 * i;
+            double* z = preconditioned + o, jw = jacobian + o;
+            if (inverseMasses[i] == 0.0)
+            {
+                jw[0] = jw[1] = jw[2] = 0.0; // (z is 0 here, so the update's w = M z - jw is 0)
+                continue;
+            }
+
+            AddTail(jw, z, hasTail, tail); // (kept in jw for the update)
+
+            var m = masses[i];
+            double wx = (m * z[0]) - jw[0], wy = (m * z[1]) - jw[1], wz = (m * z[2]) - jw[2];
+            sum += (z[0] * wx) + (z[1] * wy) + (z[2] * wz);
+        }
+
+        return sum;
+    }
+
+    /// <summary>The update and block Jacobi on particles [begin, end) (<see cref="Update"/>); returns r . r, and r . z in <paramref name="rz"/>.</summary>
+    private double UpdateChunk(int begin, int end, out double rz)
+    {
+        double* z = _pZ, jw = _pJw, p = _pP, s = _pS, dv = _pDv, r = _pR, inverses = _pInverses, masses = _pMasses;
+        double alpha = _scalar, beta = _secondScalar;
+        var sum = 0.0;
+        var second = 0.0;
+        for (var i = begin; i < end; i++)
+        {
+            var o = 3 * i;
+            var mass = masses[i];
+            var r0 = UpdateComponent(z, jw, mass, p, s, dv, r, alpha, beta, o);
+            var r1 = UpdateComponent(z, jw, mass, p, s, dv, r, alpha, beta, o + 1);
+            var r2 = UpdateComponent(z, jw, mass, p, s, dv, r, alpha, beta, o + 2);
+            sum += r0 * r0;
+            sum += r1 * r1;
+            sum += r2 * r2;
+            var zi = z + o;
+            Blocks3.MultiplySymmetric(inverses + (6 * i), r + o, zi); // z = D^-1 r with the r just written
+            second += (r0 * zi[0]) + (r1 * zi[1]) + (r2 * zi[2]);
+        }
+
+        rz = second;
+        return sum;
+    }
+
+    /// <summary>z = D^-1 r on particles [begin, end); returns their r . z.</summary>
+    private double JacobiChunk(int begin, int end)
+    {
+        double* residual = _pR, preconditioned = _pZ, inverses = _pInverses;
+        var sum = 0.0;
+        for (var i = begin; i < end; i++)
+        {
+            double* r = residual + (3 * i), z = preconditioned + (3 * i);
+            Blocks3.MultiplySymmetric(inverses + (6 * i), r, z);
+            sum += (r[0] * z[0]) + (r[1] * z[1]) + (r[2] * z[2]);
+        }
+
+        return sum;
+    }
+
+    /// <summary>v1 = v0 + dv and x1 = x0 + h v1 on particles [begin, end) (x0, v0, x1, v1 the pass's four arguments).</summary>
+    private void EndStateChunk(int begin, int end)
+    {
+        double* x0 = _a, v0 = _b, x1 = _c, v1 = _d, dv = _pDv;
+        var h = _scalar;
+        for (var k = 3 * begin; k < 3 * end; k++)
+        {
+            var v = v0[k] + dv[k];
+            v1[k] = v;
+            x1[k] = x0[k] + (h * v);
+        }
     }
 
     /// <summary>
@@ -650,13 +726,13 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
 
     /// <summary>The product's uniform tail at one particle, when there is one, as the force would have added it: jw[k] += c w[k].</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private void AddTail(double* jw, double* w)
+    private static void AddTail(double* jw, double* w, bool hasTail, double tail)
     {
-        if (_hasTail)
+        if (hasTail)
         {
-            jw[0] += _tail * w[0];
-            jw[1] += _tail * w[1];
-            jw[2] += _tail * w[2];
+            jw[0] += tail * w[0];
+            jw[1] += tail * w[1];
+            jw[2] += tail * w[2];
         }
     }
 
