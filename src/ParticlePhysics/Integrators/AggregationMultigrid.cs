@@ -598,39 +598,12 @@ internal sealed unsafe class AggregationMultigrid
         public void Execute(int chunk, int chunkCount)
         {
             var (begin, end) = Chunk.Range(chunk, chunkCount, _aggregates);
-            var sum = 0.0;
             if (Operation == Prolong)
             {
                 // X_1 of the chunk's aggregates after their post-smoothing (or as the coarsest solve left it), then
                 // z_i = D_i^-1 r_i + X_1[a] on each aggregate's free members, 0 on pinned ones; the chunk's share of r . z.
                 Level?.PostSmoothRows(begin, end, _smoothedX);
-                var coarse = Level is null ? _coarseX : _smoothedX;
-                for (var a = begin; a < end; a++)
-                {
-                    var x = coarse + (3L * a);
-
-                    for (var k = _memberStart[a]; k < _memberStart[a + 1]; k++)
-                    {
-                        var i = _members[k];
-                        double* ri = _r + (3L * i), zi = _z + (3L * i), m = _inverse + (6L * i);
-                        if (_inverseMasses[i] == 0.0)
-                        {
-                            zi[0] = zi[1] = zi[2] = 0.0;
-                            continue;
-                        }
-
-                        double rx = ri[0], ry = ri[1], rzz = ri[2];
-                        var zx = (m[0] * rx) + (m[1] * ry) + (m[2] * rzz) + x[0]; // D_i^-1 as its upper triangle
-                        var zy = (m[1] * rx) + (m[3] * ry) + (m[4] * rzz) + x[1];
-                        var zz = (m[2] * rx) + (m[4] * ry) + (m[5] * rzz) + x[2];
-                        zi[0] = zx;
-                        zi[1] = zy;
-                        zi[2] = zz;
-                        sum += (rx * zx) + (ry * zy) + (rzz * zz);
-                    }
-                }
-
-                _partial[chunk] = sum;
+                _partial[chunk] = ProlongRows(begin, end, Level is null ? _coarseX : _smoothedX);
                 return;
             }
 
@@ -646,28 +619,42 @@ internal sealed unsafe class AggregationMultigrid
                 return;
             }
 
+            _partial[chunk] = RestrictRows(begin, end, update);
+        }
+
+        /// <summary>
+        /// B_I = sum of r_i over the free members of aggregates [begin, end), in increasing member order (after each
+        /// member's update when <paramref name="update"/>), then X_I = D_I^-1 B_I; returns the chunk's r . r (0 without
+        /// the update).
+        /// </summary>
+        private double RestrictRows(int begin, int end, bool update)
+        {
+            double* residual = _r, z = _z, jw = _jw, p = _p, s = _s, dv = _dv, masses = _masses, inverseMasses = _inverseMasses;
+            double* coarseB = _coarseB, coarseX = _coarseX, coarseInverse = _coarseInverse;
+            int* memberStart = _memberStart, members = _members;
+            double alpha = Alpha, beta = Beta;
+            var smoothed = _smoothed;
+            var sum = 0.0;
             for (var a = begin; a < end; a++)
             {
-                // B_I = sum of r_i over the free members of aggregate I, in increasing member order (after each member's
-                // update when there is one), then X_I = D_I^-1 B_I.
                 double bx = 0.0, by = 0.0, bz = 0.0;
-                for (var m = _memberStart[a]; m < _memberStart[a + 1]; m++)
+                for (var m = memberStart[a]; m < memberStart[a + 1]; m++)
                 {
-                    var i = _members[m];
-                    var ri = _r + (3L * i);
+                    var i = members[m];
+                    var ri = residual + (3L * i);
                     if (update)
                     {
                         var o = 3L * i;
-                        var mass = _masses[i];
-                        var r0 = ConjugateGradientPasses.UpdateComponent(_z, _jw, mass, _p, _s, _dv, _r, Alpha, Beta, o);
-                        var r1 = ConjugateGradientPasses.UpdateComponent(_z, _jw, mass, _p, _s, _dv, _r, Alpha, Beta, o + 1);
-                        var r2 = ConjugateGradientPasses.UpdateComponent(_z, _jw, mass, _p, _s, _dv, _r, Alpha, Beta, o + 2);
+                        var mass = masses[i];
+                        var r0 = ConjugateGradientPasses.UpdateComponent(z, jw, mass, p, s, dv, residual, alpha, beta, o);
+                        var r1 = ConjugateGradientPasses.UpdateComponent(z, jw, mass, p, s, dv, residual, alpha, beta, o + 1);
+                        var r2 = ConjugateGradientPasses.UpdateComponent(z, jw, mass, p, s, dv, residual, alpha, beta, o + 2);
                         sum += r0 * r0;
                         sum += r1 * r1;
                         sum += r2 * r2;
                     }
 
-                    if (_inverseMasses[i] == 0.0)
+                    if (inverseMasses[i] == 0.0)
                     {
                         continue;
                     }
@@ -677,17 +664,17 @@ internal sealed unsafe class AggregationMultigrid
                     bz += ri[2];
                 }
 
-                var b = _coarseB + (3L * a);
+                var b = coarseB + (3L * a);
                 b[0] = bx;
                 b[1] = by;
                 b[2] = bz;
-                if (_smoothed)
+                if (smoothed)
                 {
-                    Blocks3.Multiply(_coarseInverse + (9L * a), b, _coarseX + (3L * a));
+                    Blocks3.Multiply(coarseInverse + (9L * a), b, coarseX + (3L * a));
                 }
             }
 
-            _partial[chunk] = sum;
+            return sum;
         }
 
         /// <summary>
@@ -696,19 +683,22 @@ internal sealed unsafe class AggregationMultigrid
         /// </summary>
         private double RestrictUpdated(int begin, int end)
         {
+            double* residual = _r, inverseMasses = _inverseMasses, coarseB = _coarseB, coarseX = _coarseX, coarseInverse = _coarseInverse;
+            int* memberStart = _memberStart, members = _members;
+            var smoothed = _smoothed;
             var sum = 0.0;
             for (var a = begin; a < end; a++)
             {
                 double bx = 0.0, by = 0.0, bz = 0.0;
-                for (var m = _memberStart[a]; m < _memberStart[a + 1]; m++)
+                for (var m = memberStart[a]; m < memberStart[a + 1]; m++)
                 {
-                    var i = _members[m];
-                    var ri = _r + (3L * i);
+                    var i = members[m];
+                    var ri = residual + (3L * i);
                     double r0 = ri[0], r1 = ri[1], r2 = ri[2];
                     sum += r0 * r0;
                     sum += r1 * r1;
                     sum += r2 * r2;
-                    if (_inverseMasses[i] == 0.0)
+                    if (inverseMasses[i] == 0.0)
                     {
                         continue;
                     }
@@ -718,13 +708,50 @@ internal sealed unsafe class AggregationMultigrid
                     bz += r2;
                 }
 
-                var b = _coarseB + (3L * a);
+                var b = coarseB + (3L * a);
                 b[0] = bx;
                 b[1] = by;
                 b[2] = bz;
-                if (_smoothed)
+                if (smoothed)
                 {
-                    Blocks3.Multiply(_coarseInverse + (9L * a), b, _coarseX + (3L * a));
+                    Blocks3.Multiply(coarseInverse + (9L * a), b, coarseX + (3L * a));
+                }
+            }
+
+            return sum;
+        }
+
+        /// <summary>
+        /// z_i = D_i^-1 r_i + X[a] on the free members of aggregates [begin, end) (X: level 1's values in
+        /// <paramref name="coarse"/>), 0 on pinned ones; returns their r . z. The addresses in locals: read from the
+        /// fields, they were loaded again after every store to z.
+        /// </summary>
+        private double ProlongRows(int begin, int end, double* coarse)
+        {
+            double* residual = _r, preconditioned = _z, inverses = _inverse, inverseMasses = _inverseMasses;
+            int* memberStart = _memberStart, members = _members;
+            var sum = 0.0;
+            for (var a = begin; a < end; a++)
+            {
+                var x = coarse + (3L * a);
+                for (var k = memberStart[a]; k < memberStart[a + 1]; k++)
+                {
+                    var i = members[k];
+                    double* ri = residual + (3L * i), zi = preconditioned + (3L * i), m = inverses + (6L * i);
+                    if (inverseMasses[i] == 0.0)
+                    {
+                        zi[0] = zi[1] = zi[2] = 0.0;
+                        continue;
+                    }
+
+                    double rx = ri[0], ry = ri[1], rzz = ri[2];
+                    var zx = (m[0] * rx) + (m[1] * ry) + (m[2] * rzz) + x[0]; // D_i^-1 as its upper triangle
+                    var zy = (m[1] * rx) + (m[3] * ry) + (m[4] * rzz) + x[1];
+                    var zz = (m[2] * rx) + (m[4] * ry) + (m[5] * rzz) + x[2];
+                    zi[0] = zx;
+                    zi[1] = zy;
+                    zi[2] = zz;
+                    sum += (rx * zx) + (ry * zy) + (rzz * zz);
                 }
             }
 
