@@ -409,68 +409,9 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
                 // The arithmetic of SpringLinearization.PairWithForce, written out with locals only (through the
                 // helper's output pointers the loop ran slower than the three separate loops): the same operations,
                 // in blocks whose lengths come first (SpringLengths).
-                var count = _pairs.Count;
                 var y = stackalloc double[6]; // (for a spring of zero length only)
                 var roots = stackalloc double[2 * SpringLengths.Block];
-                for (var begin = 0; begin < count; begin += SpringLengths.Block)
-                {
-                    var end = Math.Min(count, begin + SpringLengths.Block);
-                    SpringLengths.Compute(x, first, second, begin, end, roots);
-                    for (var s = begin; s < end; s++)
-                    {
-                        long a = 3 * first[s], b = 3 * second[s];
-                        var q = lin + (LinearStride * s);
-                        var c = p + (PairStride * s);
-                        double k = c[0], restLength = c[1], damping = c[2];
-                        double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
-                        double dvx = v[a] - v[b], dvy = v[a + 1] - v[b + 1], dvz = v[a + 2] - v[b + 2];
-                        var length = roots[s - begin];
-                        double yx, yy, yz, fx, fy, fz;
-                        if (length == 0.0)
-                        {
-                            SpringLinearization.PairWithForce(x, v, a, b, c, positionScale, velocityScale, roots + (s - begin), q, y, y + 3);
-                            (yx, yy, yz, fx, fy, fz) = (y[0], y[1], y[2], y[3], y[4], y[5]);
-                        }
-                        else
-                        {
-                            var inverse = roots[SpringLengths.Block + (s - begin)];
-                            var transverse = Math.Max(0.0, 1.0 - (restLength * inverse));
-                            double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
-                            var iso = k * transverse;
-                            var axial = k * (1.0 - transverse);
-                            var t = -((positionScale * k * (1.0 - transverse)) + (velocityScale * damping));
-                            var sIso = -positionScale * k * transverse;
-                            q[0] = ux;
-                            q[1] = uy;
-                            q[2] = uz;
-                            q[3] = sIso;
-                            q[4] = t;
-                            var closing = (ux * dvx) + (uy * dvy) + (uz * dvz);
-                            var along = axial * closing;
-                            yx = -((iso * dvx) + (along * ux));
-                            yy = -((iso * dvy) + (along * uy));
-                            yz = -((iso * dvz) + (along * uz));
-                            var magnitude = (k * (length - restLength)) + (damping * closing);
-                            fx = magnitude * ux;
-                            fy = magnitude * uy;
-                            fz = magnitude * uz;
-                        }
-
-                        f[a] -= fx;
-                        f[a + 1] -= fy;
-                        f[a + 2] -= fz;
-                        f[b] += fx;
-                        f[b + 1] += fy;
-                        f[b + 2] += fz;
-                        into[a] += yx;
-                        into[a + 1] += yy;
-                        into[a + 2] += yz;
-                        into[b] -= yx;
-                        into[b + 1] -= yy;
-                        into[b + 2] -= yz;
-                    }
-                }
-
+                ForcesAndLinearization(x, v, p, lin, f, into, first, second, _pairs.Count, positionScale, velocityScale, roots, y);
                 GatherDiagonalBlocks(d, lin); // from the linearisation just written
             }
         }
@@ -480,6 +421,77 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
         LinearizeAnchored(state.Positions, state.Velocities, positionScale, velocityScale, positionJacobianTimesVelocity);
         _linearized.Record(_pairs.Count, _anchored.Count);
         AddAnchoredBlocks(diagonalBlocks);
+    }
+
+    /// <summary>
+    /// The one-thread loop of <see cref="AddForcesAndLinearize"/> over the <paramref name="count"/> springs: forces into
+    /// <paramref name="f"/>, K v into <paramref name="into"/>, the linearisation into <paramref name="lin"/>. A method of
+    /// its own, with the scratch (<paramref name="roots"/>: 2 <see cref="SpringLengths.Block"/> values, <paramref name="y"/>: 6)
+    /// from the caller's stack: the runtime compiles a method that allocates on the stack once, without the profile that
+    /// its later compilation of this one uses, and the loop's locals fit in registers here.
+    /// </summary>
+    private static unsafe void ForcesAndLinearization(
+        double* x, double* v, double* p, double* lin, double* f, double* into, int* first, int* second, int count,
+        double positionScale, double velocityScale, double* roots, double* y)
+    {
+        for (var begin = 0; begin < count; begin += SpringLengths.Block)
+        {
+            var end = Math.Min(count, begin + SpringLengths.Block);
+            SpringLengths.Compute(x, first, second, begin, end, roots);
+            for (var s = begin; s < end; s++)
+            {
+                long a = 3 * first[s], b = 3 * second[s];
+                var q = lin + (LinearStride * s);
+                var c = p + (PairStride * s);
+                double k = c[0], restLength = c[1], damping = c[2];
+                double dx = x[a] - x[b], dy = x[a + 1] - x[b + 1], dz = x[a + 2] - x[b + 2];
+                double dvx = v[a] - v[b], dvy = v[a + 1] - v[b + 1], dvz = v[a + 2] - v[b + 2];
+                var length = roots[s - begin];
+                double yx, yy, yz, fx, fy, fz;
+                if (length == 0.0)
+                {
+                    SpringLinearization.PairWithForce(x, v, a, b, c, positionScale, velocityScale, roots + (s - begin), q, y, y + 3);
+                    (yx, yy, yz, fx, fy, fz) = (y[0], y[1], y[2], y[3], y[4], y[5]);
+                }
+                else
+                {
+                    var inverse = roots[SpringLengths.Block + (s - begin)];
+                    var transverse = Math.Max(0.0, 1.0 - (restLength * inverse));
+                    double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
+                    var iso = k * transverse;
+                    var axial = k * (1.0 - transverse);
+                    var t = -((positionScale * k * (1.0 - transverse)) + (velocityScale * damping));
+                    var sIso = -positionScale * k * transverse;
+                    q[0] = ux;
+                    q[1] = uy;
+                    q[2] = uz;
+                    q[3] = sIso;
+                    q[4] = t;
+                    var closing = (ux * dvx) + (uy * dvy) + (uz * dvz);
+                    var along = axial * closing;
+                    yx = -((iso * dvx) + (along * ux));
+                    yy = -((iso * dvy) + (along * uy));
+                    yz = -((iso * dvz) + (along * uz));
+                    var magnitude = (k * (length - restLength)) + (damping * closing);
+                    fx = magnitude * ux;
+                    fy = magnitude * uy;
+                    fz = magnitude * uz;
+                }
+
+                f[a] -= fx;
+                f[a + 1] -= fy;
+                f[a + 2] -= fz;
+                f[b] += fx;
+                f[b + 1] += fy;
+                f[b + 2] += fz;
+                into[a] += yx;
+                into[a + 1] += yy;
+                into[a + 2] += yz;
+                into[b] -= yx;
+                into[b + 1] -= yy;
+                into[b + 2] -= yz;
+            }
+        }
     }
 
     /// <inheritdoc />
