@@ -62,6 +62,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
     private int _frameDepth; // open FixedTimestepDriver frames: their steps leave the constraint sets' bracket to them
     private double _time;
     private double _divergenceLimit = DefaultDivergenceLimit;
+    private IParallelRunner? _runner;
 
     /// <summary>Creates an empty particle system.</summary>
     /// <param name="capacity">How many particles to make room for up front (optional).</param>
@@ -91,9 +92,18 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
     /// <summary>
     /// The runner over which force generators may split large evaluations (a spring network of thousands of
     /// springs), or null (the default) to compute everything on the calling thread. Results are bit-identical either
-    /// way. The system does not own the runner: dispose a <see cref="WorkerThreadRunner"/> yourself.
+    /// way. The system does not own the runner: dispose a <see cref="WorkerThreadRunner"/> yourself. Set it between
+    /// steps: like every change to the world, setting it from inside the world's own step throws.
     /// </summary>
-    public IParallelRunner? Runner { get; set; }
+    public IParallelRunner? Runner
+    {
+        get => _runner;
+        set
+        {
+            ThrowIfStepping();
+            _runner = value;
+        }
+    }
 
     /// <summary>
     /// The largest magnitude a velocity component may reach, in m/s: a step that produces a faster particle, or any
@@ -112,6 +122,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
         get => _divergenceLimit;
         set
         {
+            ThrowIfStepping();
             Guard.PositiveFinite(value, nameof(DivergenceLimit));
             _divergenceLimit = value;
         }
@@ -470,8 +481,14 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
     /// The step produced a value that is not finite, or a velocity beyond <see cref="DivergenceLimit"/>; the system
     /// stays at its last good state and time.
     /// </exception>
+    /// <exception cref="InvalidOperationException">
+    /// Called from inside this world's own step (a force, a pair filter or a constraint set stepping the world it
+    /// belongs to): the nested step would swap the buffers the outer one is writing into. The outer step then fails,
+    /// and the world is left as it was.
+    /// </exception>
     public void Step(IIntegrator integrator, double dt)
     {
+        ThrowIfStepping();
         Guard.NotNull(integrator, nameof(integrator));
         Guard.PositiveFinite(dt, nameof(dt));
         Guard.FiniteEndTime(_time, dt);
@@ -1186,14 +1203,17 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
         }
     }
 
-    /// <summary>Throws when called from inside this world's own step (by a force generator or a constraint set).</summary>
+    /// <summary>
+    /// Throws when called from inside this world's own step (by a force generator, a pair filter or a constraint set):
+    /// every change to the world, a nested step of it, and its driver's frames and resets.
+    /// </summary>
     internal void ThrowIfStepping()
     {
         if (_stepping)
         {
             throw new InvalidOperationException(
-                "The world cannot be changed during its own step (by a force generator or a constraint set): "
-                + "a step either commits whole or leaves the world as it was.");
+                "The world cannot be changed or stepped during its own step (from a force generator, a pair filter or "
+                + "a constraint set): a step either commits whole or leaves the world as it was.");
         }
     }
 

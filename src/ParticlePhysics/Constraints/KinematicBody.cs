@@ -67,6 +67,7 @@ public sealed class KinematicBody
     /// </summary>
     public bool Detach(int particle)
     {
+        _world.ThrowIfStepping(); // before the body forgets the particle: Unpin would refuse only after that
         var index = _particles.IndexOf(particle);
         if (index < 0)
         {

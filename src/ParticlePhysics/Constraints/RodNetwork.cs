@@ -115,6 +115,7 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
         get => _driftStiffness;
         set
         {
+            _world.ThrowIfStepping();
             Guard.NonNegativeFinite(value, nameof(DriftStiffness));
             _driftStiffness = value;
         }
@@ -126,6 +127,7 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
         get => _driftDamping;
         set
         {
+            _world.ThrowIfStepping();
             Guard.NonNegativeFinite(value, nameof(DriftDamping));
             _driftDamping = value;
         }
