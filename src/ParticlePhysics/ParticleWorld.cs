@@ -266,6 +266,10 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
     /// Call it once per frame with the anchor's next position.
     /// </summary>
     /// <exception cref="InvalidOperationException">The particle is not pinned (forces move a free particle).</exception>
+    /// <exception cref="ArgumentOutOfRangeException">
+    /// The target is not finite, or so far that target - x overflows; the duration is not positive and finite, or so
+    /// short that the velocity overflows. Nothing is changed.
+    /// </exception>
     public void MoveKinematic(int index, Vector3d target, double duration)
     {
         ThrowIfStepping();
@@ -278,9 +282,46 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
                 $"Particle {index} is not pinned: forces move it. Pin it to drive it along a path.");
         }
 
-        var velocity = (target - GetPosition(index)) * (1.0 / duration);
-        Guard.Finite(velocity, nameof(target));
-        WriteVelocity(index, velocity);
+        WriteVelocity(index, KinematicVelocity(index, target, duration, nameof(target)));
+    }
+
+    /// <summary>
+    /// The velocity (target - x) / duration that takes particle <paramref name="index"/> to <paramref name="target"/>
+    /// in <paramref name="duration"/> seconds (both finite, the duration positive), or an exception that names what is
+    /// out of range. The difference comes first, so a particle already there gets 0 at any duration; it is scaled by
+    /// 1 / duration (the bits of every run before), and divided instead where that is not finite: below
+    /// 1 / double.MaxValue (about 5.6e-309 s) the inverse overflows, and 0 times it was NaN. A target too far names
+    /// <paramref name="targetName"/>, the parameter the caller's target came from.
+    /// </summary>
+    internal Vector3d KinematicVelocity(int index, Vector3d target, double duration, string targetName)
+    {
+        var position = GetPosition(index);
+        var difference = target - position;
+        if (!difference.IsFinite)
+        {
+            throw new ArgumentOutOfRangeException(
+                targetName,
+                target,
+                $"The target {target} is so far from particle {index} at {position} that target - x overflows; "
+                + "move it in smaller steps.");
+        }
+
+        var velocity = difference * (1.0 / duration);
+        if (!velocity.IsFinite)
+        {
+            velocity = difference / duration;
+        }
+
+        if (!velocity.IsFinite)
+        {
+            throw new ArgumentOutOfRangeException(
+                nameof(duration),
+                duration,
+                $"duration {Guard.Format(duration)} s is too short to move particle {index} by {difference}: the "
+                + "velocity (target - x) / duration overflows. Give the move a longer duration.");
+        }
+
+        return velocity;
     }
 
     /// <summary>The mass of a particle, in kilograms.</summary>
