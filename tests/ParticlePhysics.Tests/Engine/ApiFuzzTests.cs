@@ -19,8 +19,11 @@ namespace ParticlePhysics.Tests.Engine;
 /// <summary>
 /// Issue 10: long random sequences of public operations on small worlds (particles, masses, pins, states, times, limits,
 /// springs, dampers, forces added and removed, integrators switched between steps and retuned, snapshots, a fixed-step
-/// driver), with invalid values and with user forces that throw or write NaN or infinity. Every operation runs on two
-/// twin worlds built alike; only the first twin's faulty forces are ever armed. Checked after every operation:
+/// driver, rods, contacts, a kinematic body and kinematic moves in durations down to double.Epsilon), with invalid values
+/// and with user forces that throw or write NaN or infinity. Issue 27: a force, the contacts' pair filter or a
+/// constraint set that steps the world, or advances its driver, from inside the world's own step (armed like a fault).
+/// Every operation runs on two twin worlds built alike; only the first twin's faults are ever armed. Checked after
+/// every operation:
 /// <list type="bullet">
 /// <item>the twins agree: the same outcome (the same exception, or none) and bit-identical state, masses, pins, time,
 /// integrator states and driver;</item>
@@ -78,6 +81,8 @@ public class ApiFuzzTests
         Assert.True(fuzzer.FaultFailures > 30, fuzzer.Report());
         Assert.True(fuzzer.Retries > 50, fuzzer.Report());
         Assert.True(fuzzer.StepsWithImpacts > operations / 200, fuzzer.Report());
+        Assert.True(fuzzer.NestedRefusals > operations / 1000, fuzzer.Report());
+        Assert.True(fuzzer.TinyDurationMoves > operations / 1000, fuzzer.Report());
     }
 
     /// <summary>What <see cref="Twin.Observe()"/> saw, compared byte for byte.</summary>
@@ -112,6 +117,7 @@ public class ApiFuzzTests
         private Twin _a = null!;
         private Twin _b = null!;
         private int _sequence;
+        private bool _tinyDuration; // the operation being drawn moves a kinematic particle in less than 1 / double.MaxValue s
 
         public Fuzzer(ulong seed)
         {
@@ -133,6 +139,15 @@ public class ApiFuzzTests
 
         public int SnapshotRoundTrips { get; private set; }
 
+        /// <summary>Calls refused because an armed nesting called the world back from inside its step (issue 27, item 1).</summary>
+        public int NestedRefusals { get; private set; }
+
+        /// <summary>
+        /// Kinematic moves with a duration whose inverse overflows that reached the velocities (issue 27, items 2 and 3):
+        /// accepted, or refused for a velocity that overflows.
+        /// </summary>
+        public int TinyDurationMoves { get; private set; }
+
         public Dictionary<string, int> RejectionsByType { get; } = new();
 
         /// <summary>Steps after which the contact set had logged impacts (so that its log was there to keep or restore).</summary>
@@ -141,7 +156,8 @@ public class ApiFuzzTests
         public string Report() => string.Format(
             CultureInfo.InvariantCulture,
             "seed {0}: {1} operations in {2} sequences, {3} rejected ({4}), {5} steps of which {6} failed, {7} failures "
-            + "caused by an armed fault, {8} retries that matched the clean twin, {9} snapshot round trips, {10} steps with impacts logged",
+            + "caused by an armed fault, {8} retries that matched the clean twin, {9} snapshot round trips, {10} steps with impacts logged, "
+            + "{11} calls refused for a nested call into the world, {12} kinematic moves in less than 1 / double.MaxValue s that reached the velocities",
             _seed,
             Operations,
             _sequence,
@@ -152,7 +168,9 @@ public class ApiFuzzTests
             FaultFailures,
             Retries,
             SnapshotRoundTrips,
-            StepsWithImpacts);
+            StepsWithImpacts,
+            NestedRefusals,
+            TinyDurationMoves);
 
         public void Run(int operations)
         {
@@ -204,8 +222,14 @@ public class ApiFuzzTests
 
             var armed = _a.IsArmed;
             (SimulationSnapshot World, double[][] Integrators)? saved = armed ? _a.Save() : null;
+            var tinyDuration = _tinyDuration;
             var failureA = Attempt(apply, _a);
             var attempts = $"first twin: {Describe(failureA)}";
+            if (armed && failureA is InvalidOperationException && failureA.Message.Contains("during its own step", StringComparison.Ordinal))
+            {
+                NestedRefusals++;
+            }
+
             if (armed && failureA is not null)
             {
                 // The call failed with a fault armed: the first twin must be as it was, and a retry without the fault
@@ -234,6 +258,11 @@ public class ApiFuzzTests
             Expect(
                 Describe(failureA) == Describe(failureB),
                 $"the twins disagree: {Describe(failureA)} against {Describe(failureB)}");
+            if (tinyDuration && (failureA is null || (failureA is ArgumentOutOfRangeException { ParamName: "duration" } && failureA.Message.Contains("velocity", StringComparison.Ordinal))))
+            {
+                TinyDurationMoves++;
+            }
+
             if (failureA is not null)
             {
                 Rejections++;
@@ -305,11 +334,19 @@ public class ApiFuzzTests
 
         private int Index() => _random.Next(-1, _a.World.Count + 1);
 
+        /// <summary>A pinned particle of the first twin (the twins agree), or any index when none is pinned.</summary>
+        private int PinnedIndex()
+        {
+            var pinned = Enumerable.Range(0, _a.World.Count).Where(_a.World.IsPinned).ToArray();
+            return pinned.Length > 0 ? _random.Pick(pinned) : Index();
+        }
+
         /// <summary>The next operation: its description and what it does to a twin, every argument drawn once.</summary>
         private (string Name, Action<Twin> Apply) NextOperation()
         {
             var r = _random;
-            switch (r.Next(108))
+            _tinyDuration = false;
+            switch (r.Next(120))
             {
                 case < 5 when _a.World.Count < MaxParticles:
                     {
@@ -601,8 +638,10 @@ public class ApiFuzzTests
 
                 case < 97:
                     {
-                        var (i, target, duration) = (Index(), Vector(-1, 1), r.Value(0.005, 0.1));
-                        return ($"move kinematic {i} {target} in {G(duration)}", t => t.World.MoveKinematic(i, target, duration));
+                        // Sometimes to where the particle is (velocity 0 at any duration), sometimes in an extreme duration.
+                        var (i, target, duration, stay) = (r.Chance(0.7) ? PinnedIndex() : Index(), Vector(-1, 1), Duration(), r.Chance(0.5));
+                        return ($"move kinematic {i} {(stay ? "where it is" : target.ToString())} in {G(duration)}", t =>
+                            t.World.MoveKinematic(i, stay && i >= 0 && i < t.World.Count ? t.World.GetPosition(i) : target, duration));
                     }
 
                 case < 100:
@@ -666,12 +705,68 @@ public class ApiFuzzTests
                         );
                     }
 
+                case < 111:
+                    {
+                        // Issue 27, item 1: a step of the world (or a frame of its driver) started from inside its own
+                        // step, by a force, the contacts' pair filter or a constraint set: armed on the first twin only,
+                        // like a fault. Refused, the outer step must fail whole, and its retry equal the clean twin's.
+                        var (site, after, frame, k, dt) = (r.Pick(NestingSite.Force, NestingSite.PairFilter, NestingSite.Constraints), r.Next(0, 4), r.Chance(0.3), r.Next(Twin.IntegratorCount), r.Between(1e-4, 0.01));
+                        var what = frame ? $"driver frame of {G(dt)}" : $"step {Twin.IntegratorName(k)} dt={G(dt)}";
+                        return ($"arm nested {what} from the {site} after {after}", t =>
+                        {
+                            if (ReferenceEquals(t, _a))
+                            {
+                                t.Nesting.Arm(site, after, frame ? () => t.Driver.Advance(dt) : () => t.World.Step(t.Integrators[k], dt));
+                            }
+                        }
+                        );
+                    }
+
+                case < 115:
+                    {
+                        // Attaching a particle the body holds already attaches it again (a "calm" may have unpinned it):
+                        // Detach changes nothing unless the index is attached, and then Attach succeeds.
+                        var i = Index();
+                        return r.Chance(0.8)
+                            ? ($"(re)attach {i}", t =>
+                            {
+                                _ = t.Body.Detach(i);
+                                t.Body.Attach(i);
+                            }
+                            )
+                            : ($"detach {i}", t => t.Body.Detach(i));
+                    }
+
+                case < 119:
+                    {
+                        // Issue 27, item 2: a pose whose velocities overflow for some particles and not others, or a
+                        // duration so short that 1 / duration overflows.
+                        var position = r.Chance(0.3) ? new Vector3d(r.Pick(1e-300, 1e300, -1e300, 0.0), 0, 0) : Clean(-1, 1);
+                        var orientation = r.Pick(
+                            Rotation3d.Identity,
+                            Rotation3d.FromAxisAngle(new Vector3d(0, 0, 1), Math.PI),
+                            Rotation3d.FromAxisAngle(new Vector3d(1, 1, 0), r.Between(-3, 3)));
+                        var duration = Duration();
+                        return ($"move body to {position} {orientation.X:R},{orientation.Y:R},{orientation.Z:R},{orientation.W:R} in {G(duration)}", t => t.Body.MoveTo(position, orientation, duration));
+                    }
+
                 default:
                     {
                         var (i, anchor) = (r.Next(-1, 3), Vector(-1, 1));
                         return ($"move zero-length anchor {i} {anchor}", t => t.Zero.SetAnchor(i, anchor));
                     }
             }
+        }
+
+        /// <summary>A kinematic move's duration: usually a frame's, sometimes one whose inverse overflows, or an invalid one.</summary>
+        private double Duration()
+        {
+            var roll = _random.NextDouble();
+            var duration = roll < 0.25 ? _random.Pick(double.Epsilon, 1e-308, 1e-320)
+                : roll < 0.35 ? _random.Pick(1e-300, 5.6e-309, 0.0, -0.01, double.NaN, double.PositiveInfinity)
+                : _random.Value(0.005, 0.1);
+            _tinyDuration = duration > 0.0 && double.IsInfinity(1.0 / duration);
+            return duration;
         }
 
         private Twin Other(Twin t) => ReferenceEquals(t, _a) ? _b : _a;
@@ -727,6 +822,13 @@ public class ApiFuzzTests
             Contacts.Add(Obstacles[0]);
             _constraints = new IConstraintSet[] { Rods, Projection, Contacts, FaultyConstraints };
             Driver = new FixedTimestepDriver(World, Integrators[4], 0.005, 2);
+
+            // Always there in both twins, doing nothing unless the first twin's nesting is armed (a filter that lets
+            // every pair collide is the same as none).
+            World.AddForce(new NestingForce(Nesting));
+            Contacts.PairFilter = new NestingFilter(Nesting);
+            FaultyConstraints.Nesting = Nesting;
+            Body = new KinematicBody(World, Vector3d.Zero, Rotation3d.Identity);
         }
 
         public ParticleWorld World { get; } = new();
@@ -751,11 +853,15 @@ public class ApiFuzzTests
 
         public FaultyConstraintSet FaultyConstraints { get; } = new();
 
+        public Nesting Nesting { get; } = new();
+
+        public KinematicBody Body { get; }
+
         public IIntegrator[] Integrators { get; }
 
         public FixedTimestepDriver Driver { get; set; }
 
-        public bool IsArmed => Faulty.Armed != Fault.None || FaultyJacobian.Armed || FaultyConstraints.Armed != Fault.None;
+        public bool IsArmed => Faulty.Armed != Fault.None || FaultyJacobian.Armed || FaultyConstraints.Armed != Fault.None || Nesting.Armed;
 
         public static string IntegratorName(int k) => _integratorNames[k];
 
@@ -776,6 +882,7 @@ public class ApiFuzzTests
             Faulty.Arm(Fault.None);
             FaultyJacobian.Armed = false;
             FaultyConstraints.Arm(Fault.None, 0, 0);
+            Nesting.Disarm();
         }
 
         public void Toggle(int g)
@@ -876,7 +983,7 @@ public class ApiFuzzTests
         private const int FirstIntegratorPart = 9;
         private const int Parts = FirstIntegratorPart + IntegratorCount;
 
-        private static readonly string[] _partNames = { "count, time, limit", "state", "masses", "inverse masses", "pins", "forces", "element counts", "driver", "radii, contacts and rods" };
+        private static readonly string[] _partNames = { "count, time, limit", "state", "masses", "inverse masses", "pins", "forces", "element counts", "driver", "radii, contacts, rods and body" };
 
         /// <summary>Everything a call may change, as bytes: world, forces, constraints, integrator states, driver, rendering.</summary>
         public Observation Observe() => new(Observe(-1));
@@ -1001,6 +1108,18 @@ public class ApiFuzzTests
                     {
                         w.Write(Rods.GetTension(link));
                     }
+
+                    w.Write(Body.Position.X);
+                    w.Write(Body.Position.Y);
+                    w.Write(Body.Position.Z);
+                    w.Write(Body.Orientation.X);
+                    w.Write(Body.Orientation.Y);
+                    w.Write(Body.Orientation.Z);
+                    w.Write(Body.Orientation.W);
+                    foreach (var particle in Body.Particles)
+                    {
+                        w.Write(particle);
+                    }
                 }
 
                 for (var k = 0; k < IntegratorCount; k++)
@@ -1068,8 +1187,11 @@ public class ApiFuzzTests
 
         public void SolveVelocities(in ConstraintContext context) => Call(context.Positions, context.Velocities);
 
+        public Nesting? Nesting { get; set; }
+
         private void Call(Span<double> positions, Span<double> velocities)
         {
+            Nesting?.Call(NestingSite.Constraints);
             if (Armed == Fault.None || _calls++ < _after || 3 * _particle >= positions.Length)
             {
                 return;
@@ -1086,6 +1208,74 @@ public class ApiFuzzTests
                     positions[3 * _particle] = double.PositiveInfinity;
                     break;
             }
+        }
+    }
+
+    /// <summary>Where an armed <see cref="Nesting"/> calls the world back from inside its step.</summary>
+    private enum NestingSite
+    {
+        Force,
+        PairFilter,
+        Constraints,
+    }
+
+    /// <summary>
+    /// A call into the world (a nested step, a driver frame) that the first twin's force, pair filter or constraint set
+    /// makes from inside the world's step once armed: on its <c>after</c>-th call from the arming on, once.
+    /// </summary>
+    private sealed class Nesting
+    {
+        private NestingSite _site;
+        private int _after;
+        private Action? _action;
+
+        public bool Armed => _action is not null;
+
+        public void Arm(NestingSite site, int after, Action action)
+        {
+            (_site, _after, _action) = (site, after, action);
+        }
+
+        public void Disarm() => _action = null;
+
+        public void Call(NestingSite site)
+        {
+            if (_action is null || site != _site || _after-- > 0)
+            {
+                return;
+            }
+
+            var action = _action;
+            _action = null;
+            action();
+        }
+    }
+
+    private sealed class NestingForce : IForceGenerator
+    {
+        private readonly Nesting _nesting;
+
+        public NestingForce(Nesting nesting)
+        {
+            _nesting = nesting;
+        }
+
+        public void AddForces(in ParticleState state, Span<double> forces) => _nesting.Call(NestingSite.Force);
+    }
+
+    private sealed class NestingFilter : IContactPairFilter
+    {
+        private readonly Nesting _nesting;
+
+        public NestingFilter(Nesting nesting)
+        {
+            _nesting = nesting;
+        }
+
+        public bool MayCollide(int first, int second)
+        {
+            _nesting.Call(NestingSite.PairFilter);
+            return true;
         }
     }
 }
