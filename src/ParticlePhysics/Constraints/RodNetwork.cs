@@ -6,7 +6,7 @@ namespace ParticlePhysics.Constraints;
 
 /// <summary>
 /// Rods and cables between two particles, or between a particle and a fixed anchor. A rod holds its ends at exactly
-/// its length L: C = |x_i - x_j| - L = 0. A cable holds them at most L apart (C &lt;= 0): a rod while taut, nothing
+/// its length L: C = |x_i - x_j| - L = 0 (L from about 5.6e-309 m to 1.34e154 m: its inverse and its square finite). A cable holds them at most L apart (C &lt;= 0): a rod while taut, nothing
 /// while slack; going taut is an inelastic impact (the separating velocity is removed by an impulse along the cable).
 /// </summary>
 /// <remarks>
@@ -501,6 +501,16 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
 
         Guard.Finite(anchor, nameof(anchor));
         Guard.PositiveWithFiniteInverse(length, nameof(length), "m"); // the solve divides by it
+        if (!DoubleChecks.IsFinite(length * length))
+        {
+            // The constraint forces use C = (|d|^2 - L^2) / 2: L^2 = infinity made every evaluation NaN.
+            throw new ArgumentOutOfRangeException(
+                nameof(length),
+                length,
+                $"length must be at most about 1.34e154 m, so that its square is finite (the constraint C = (|d|^2 - L^2) / 2 "
+                + $"squares it, as a capsule's segment is); got {Guard.Format(length)}.");
+        }
+
         _world.ThrowIfStepping();
         if (_count == _first.Length)
         {

@@ -37,6 +37,55 @@ public class NewApiBadInputTests
         rods.AddRod(0, 1, 5.6e-309); // the smallest such length is accepted
     }
 
+    [Theory]
+    [InlineData(1e160)]
+    [InlineData(1.35e154)]
+    [InlineData(double.MaxValue)]
+    public void A_rod_or_cable_length_whose_square_overflows_is_refused_like_a_capsule(double length)
+    {
+        // Issue 27, item 9: AddAnchoredRod(p, anchor, 1e160) with the particle exactly that far was accepted, then every
+        // rk4 and xpbd step failed with NaN: the constraint C = (|d|^2 - L^2) / 2 squares the length.
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(length, 0, 0), 1);
+        world.AddParticle(new Vector3d(0, 0, 0), 1);
+        var rods = new RodNetwork(world);
+        foreach (var add in new Action[]
+        {
+            () => rods.AddRod(0, 1, length), () => rods.AddCable(0, 1, length),
+            () => rods.AddAnchoredRod(0, Vector3d.Zero, length), () => rods.AddAnchoredCable(0, Vector3d.Zero, length),
+        })
+        {
+            var e = Assert.Throws<ArgumentOutOfRangeException>("length", add);
+            Assert.Contains("square", e.Message, StringComparison.Ordinal);
+            Assert.Contains(length.ToString("R", CultureInfo.InvariantCulture), e.Message, StringComparison.Ordinal);
+        }
+
+        Assert.Equal(0, rods.Count);
+    }
+
+    [Theory]
+    [InlineData("rk4")]
+    [InlineData("semi-implicit-euler")]
+    [InlineData("xpbd")]
+    public void A_rod_of_1e150_m_steps(string integrator)
+    {
+        // The longest rods accepted square to a finite number, and step: a particle on a rod of 1e150 m swinging at 1 m/s.
+        const double length = 1e150;
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(length, 0, 0), new Vector3d(0, 1, 0), 1);
+        var rods = new RodNetwork(world);
+        rods.AddAnchoredRod(0, Vector3d.Zero, length);
+        world.AddConstraints(rods);
+        var method = IntegratorCatalog.Create(integrator);
+        for (var s = 0; s < 10; s++)
+        {
+            world.Step(method, 0.01);
+        }
+
+        Assert.Equal(length, world.GetPosition(0).X, length * 1e-15);
+        Assert.Equal(0.1, world.GetPosition(0).Y, 12);
+    }
+
     [Fact]
     public void Directions_whose_length_overflows_or_underflows_are_normalised_not_refused()
     {
