@@ -555,7 +555,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
             integrator.Step(this, _time, current, _next, dt);
             if (integrator is not IPositionBasedIntegrator)
             {
-                ResolveConstraints(current, dt);
+                ResolveConstraints(current, dt, integrator is IKickDriftIntegrator);
             }
 
             _stepping = false;
@@ -677,8 +677,11 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
             _time + dt, _time, velocity ? n + bad : bad, particle, value, _divergenceLimit, cause);
     }
 
-    /// <summary>The constraint stage after a force-based step: every set corrects the end state in the scratch buffer.</summary>
-    private void ResolveConstraints(Span<double> start, double dt)
+    /// <summary>
+    /// The constraint stage after a force-based step: every set corrects the end state in the scratch buffer, told
+    /// whether the step was a kick and a drift (<see cref="ConstraintContext.KickDrift"/>).
+    /// </summary>
+    private void ResolveConstraints(Span<double> start, double dt, bool kickDrift)
     {
         if (_constraintSets.Count == 0)
         {
@@ -688,7 +691,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
         var n = 3 * _count;
         var end = _next.AsSpan(0, 2 * n);
         var context = new ConstraintContext(
-            _time, dt, start.Slice(0, n), start.Slice(n, n), end.Slice(0, n), end.Slice(n, n), Masses, InverseMasses, Radii, Runner);
+            _time, dt, start.Slice(0, n), start.Slice(n, n), end.Slice(0, n), end.Slice(n, n), Masses, InverseMasses, Radii, Runner, kickDrift);
         for (var c = 0; c < _constraintSets.Count; c++)
         {
             _constraintSets[c].Resolve(in context);
