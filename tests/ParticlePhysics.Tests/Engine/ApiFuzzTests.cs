@@ -727,14 +727,17 @@ public class ApiFuzzTests
                         // Attaching a particle the body holds already attaches it again (a "calm" may have unpinned it):
                         // Detach changes nothing unless the index is attached, and then Attach succeeds.
                         var i = Index();
-                        return r.Chance(0.8)
-                            ? ($"(re)attach {i}", t =>
-                            {
-                                _ = t.Body.Detach(i);
-                                t.Body.Attach(i);
-                            }
-                            )
-                            : ($"detach {i}", t => t.Body.Detach(i));
+                        if (!r.Chance(0.8))
+                        {
+                            return ($"detach {i}", t => t.Body.Detach(i));
+                        }
+
+                        return ($"(re)attach {i}", t =>
+                        {
+                            _ = t.Body.Detach(i);
+                            t.Body.Attach(i);
+                        }
+                        );
                     }
 
                 case < 119:
