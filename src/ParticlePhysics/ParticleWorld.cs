@@ -482,6 +482,10 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
         if (constraints is IConstraintForces forces)
         {
             _constraintForces.Add(forces);
+            if (constraints is IForceJacobian)
+            {
+                _structureVersion++; // it enters J: a product needs a Linearize that saw it
+            }
         }
 
         _unprojectedStale = true;
@@ -499,6 +503,12 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
         if (constraints is IConstraintForces forces)
         {
             _ = _constraintForces.Remove(forces);
+            if (constraints is IForceJacobian)
+            {
+                _linearized.Clear(); // as for a removed generator: no later product may reach it
+                _linearizedSource.Clear();
+                _structureVersion++;
+            }
         }
 
         _unprojectedStale = true;
@@ -902,6 +912,12 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
     {
         CheckLinearization(positions.Length, velocities.Length, positionJacobianTimesVelocity.Length);
         CollectLinearized(userForces);
+        if (_linearized.Count > 0 && _linearizedSource[_linearized.Count - 1] >= _forceGenerators.Count)
+        {
+            // A constraint set linearises the multipliers of its last forces: evaluate them at this state first.
+            _ = AccumulateForces(time, positions, velocities);
+        }
+
         var view = new ParticleState(time, positions, velocities, Masses, InverseMasses, Runner);
         for (var j = 0; j < _linearized.Count; j++)
         {
@@ -963,6 +979,13 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
         for (var c = 0; c < _constraintForces.Count; c++)
         {
             _constraintForces[c].AddConstraintForces(in view, forces);
+            if (next < _linearized.Count && _linearizedSource[next] == _forceGenerators.Count + c)
+            {
+                // Right after its forces at this state: a constraint set linearises the multipliers it just solved for.
+                var jacobian = _linearized[next++];
+                jacobian.Linearize(view, positionScale, velocityScale, positionJacobianTimesVelocity);
+                jacobian.AddDiagonalBlocks(diagonalBlocks);
+            }
         }
 
         _linearizedVersion = _structureVersion;
@@ -983,7 +1006,8 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
 
     /// <summary>
     /// The generators that enter J, in the order they were added: those that implement <see cref="IForceJacobian"/>,
-    /// and the others wrapped in finite differences when <paramref name="userForces"/> asks for it.
+    /// and the others wrapped in finite differences when <paramref name="userForces"/> asks for it; then the constraint
+    /// sets that act through forces (<see cref="IConstraintForces"/>) and implement <see cref="IForceJacobian"/>.
     /// </summary>
     private void CollectLinearized(UserForceTreatment userForces)
     {
@@ -1008,6 +1032,17 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
 
                 _linearized.Add(wrapper);
                 _linearizedSource.Add(g);
+            }
+        }
+
+        // Then the constraint sets that act through forces and linearise them (rods: their tensions' geometric
+        // stiffness), numbered after the generators.
+        for (var c = 0; c < _constraintForces.Count; c++)
+        {
+            if (_constraintForces[c] is IForceJacobian jacobian)
+            {
+                _linearized.Add(jacobian);
+                _linearizedSource.Add(_forceGenerators.Count + c);
             }
         }
     }

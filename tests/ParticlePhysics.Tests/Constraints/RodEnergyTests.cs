@@ -30,12 +30,14 @@ public class RodEnergyTests
 
     [Theory]
     [InlineData("semi-implicit-euler")]
-    public void Chains_of_2_to_10_rods_stay_as_stable_as_their_integrator_for_10_s(string integrator) =>
-        CheckChains(integrator, 10, new[] { 2, 3, 5, 10 });
+    [InlineData("implicit-euler")]
+    public void Chains_of_2_to_10_rods_stay_as_stable_as_their_integrator_for_5_s(string integrator) =>
+        CheckChains(integrator, 5, new[] { 2, 3, 5, 10 });
 
     [Theory]
     [Trait("Category", "Long")]
     [InlineData("semi-implicit-euler")]
+    [InlineData("implicit-euler")]
     public void Chains_of_2_to_10_rods_stay_as_stable_as_their_integrator_for_60_s(string integrator) =>
         CheckChains(integrator, 60, Enumerable.Range(2, 9));
 
