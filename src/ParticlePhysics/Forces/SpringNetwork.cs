@@ -98,6 +98,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     /// <returns>The index of the new spring among the particle-particle springs.</returns>
     public int Add(int first, int second, double stiffness, double restLength, double damping = 0.0)
     {
+        _system.ThrowIfStepping();
         Guard.ParticleIndex(first, _system.Count, nameof(first));
         Guard.ParticleIndex(second, _system.Count, nameof(second));
         Guard.DistinctParticles(first, second, nameof(second));
@@ -116,6 +117,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     /// <returns>The index of the new spring among the anchored springs.</returns>
     public int AddAnchored(int particle, Vector3d anchor, double stiffness, double restLength, double damping = 0.0)
     {
+        _system.ThrowIfStepping();
         Guard.ParticleIndex(particle, _system.Count, nameof(particle));
         Guard.Finite(anchor, nameof(anchor));
         CheckParameters(stiffness, restLength, damping);
@@ -127,6 +129,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     /// <summary>Changes the stiffness of a particle-particle spring (a finite number &gt;= 0, in N/m).</summary>
     public void SetStiffness(int spring, double stiffness)
     {
+        _system.ThrowIfStepping();
         _pairs.CheckIndex(spring, nameof(spring));
         Guard.NonNegativeFinite(stiffness, nameof(stiffness));
         _pairs.Parameters[PairStride * spring] = stiffness;
@@ -136,6 +139,7 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
     /// <summary>Changes the axial damping of a particle-particle spring (a finite number &gt;= 0, in N s/m).</summary>
     public void SetDamping(int spring, double damping)
     {
+        _system.ThrowIfStepping();
         _pairs.CheckIndex(spring, nameof(spring));
         Guard.NonNegativeFinite(damping, nameof(damping));
         _pairs.Parameters[(PairStride * spring) + 2] = damping;

@@ -192,6 +192,58 @@ public class ReentrantStepTests
     }
 
     [Fact]
+    public void The_worlds_own_force_elements_are_refused_from_inside_its_step()
+    {
+        // Springs, zero-length springs, dampers and a particle drag are built for one world: a force that added or
+        // retuned them during a step changed the forces under the step, and kept the change when the step failed.
+        var (world, method) = Ball("implicit-euler");
+        world.AddParticle(new Vector3d(1, 1, 0), 1);
+        var springs = new SpringNetwork(world);
+        springs.Add(0, 1, 10, 1);
+        var zero = new ZeroLengthSprings(world);
+        zero.Add(0, 1, 5);
+        var dampers = new Dampers(world);
+        dampers.Add(0, 1, 0.5);
+        var drag = new LinearDrag(0.1, world, new[] { 0 });
+        foreach (var force in new IForceGenerator[] { springs, zero, dampers, drag })
+        {
+            world.AddForce(force);
+        }
+
+        var changes = new (string Name, Action Change)[]
+        {
+            ("SpringNetwork.Add", () => springs.Add(0, 1, 20, 2)),
+            ("SpringNetwork.AddAnchored", () => springs.AddAnchored(0, Vector3d.Zero, 20, 2)),
+            ("SpringNetwork.SetStiffness", () => springs.SetStiffness(0, 99)),
+            ("SpringNetwork.SetDamping", () => springs.SetDamping(0, 9)),
+            ("ZeroLengthSprings.Add", () => zero.Add(0, 1, 7)),
+            ("ZeroLengthSprings.AddAnchored", () => zero.AddAnchored(0, Vector3d.Zero, 7)),
+            ("ZeroLengthSprings.SetStiffness", () => zero.SetStiffness(0, 77)),
+            ("ZeroLengthSprings.SetAnchor", () => zero.SetAnchor(0, Vector3d.Zero)),
+            ("Dampers.Add", () => dampers.Add(0, 1, 3)),
+            ("Dampers.SetDamping", () => dampers.SetDamping(0, 3)),
+            ("LinearDrag.Coefficient", () => drag.Coefficient = 3),
+        };
+
+        ISpringElements[] elements = { springs, zero };
+        var versions = Array.ConvertAll(elements, e => (e.TopologyVersion, e.ParameterVersion));
+        foreach (var (name, change) in changes)
+        {
+            var nested = new Reentrant(change);
+            world.AddForce(nested);
+            var e = Assert.Throws<InvalidOperationException>(() => world.Step(method, Dt));
+            Assert.True(e.Message.Contains("during its own step", StringComparison.Ordinal), $"{name}: {e.Message}");
+            world.RemoveForce(nested);
+            Assert.Equal(versions, Array.ConvertAll(elements, e => (e.TopologyVersion, e.ParameterVersion)));
+        }
+
+        Assert.Equal((1, 0), (springs.Count, springs.AnchoredCount));
+        Assert.Equal((1, 0), (zero.Count, zero.AnchoredCount));
+        Assert.Equal(1, dampers.Count);
+        Assert.Equal(0.1, drag.Coefficient);
+    }
+
+    [Fact]
     public void Another_world_may_be_stepped_from_inside_a_force()
     {
         // The refusal is per world: a force may advance a world of its own (with an integrator of its own).
