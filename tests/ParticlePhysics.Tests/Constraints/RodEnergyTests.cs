@@ -19,7 +19,6 @@ public class RodEnergyTests
 {
     private const double RodLength = 0.1;
     private const double Mass = 0.1;
-    private const double Dt = 1e-3;
 
     private readonly ITestOutputHelper _output;
 
@@ -32,14 +31,23 @@ public class RodEnergyTests
     [InlineData("semi-implicit-euler")]
     [InlineData("implicit-euler")]
     public void Chains_of_2_to_10_rods_stay_as_stable_as_their_integrator_for_5_s(string integrator) =>
-        CheckChains(integrator, 5, new[] { 2, 3, 5, 10 });
+        CheckChains(integrator, 5, new[] { 2, 3, 5, 10 }, 1e-3);
 
+    /// <remarks>
+    /// Semi-implicit Euler takes the tension explicitly, so it is stable where it would be on springs of the tensions'
+    /// geometric stiffness, T / L per rod: h 2 sqrt(T / (m L)) &lt; 2. Measured with rk4 over these 60 s, T reaches
+    /// 22 N on two rods and 501 N on ten (2 sqrt(T / (m L)) = 94 and 447 rad/s): 2 ms is within that limit for every
+    /// chain (h omega = 0.9 for ten rods), and bounded too. Near it, at 4.2 ms (h omega = 1.9), ten rods gain up to 19 J. Implicit
+    /// Euler is stable and dissipative at a game's 60 Hz as well.
+    /// </remarks>
     [Theory]
     [Trait("Category", "Long")]
-    [InlineData("semi-implicit-euler")]
-    [InlineData("implicit-euler")]
-    public void Chains_of_2_to_10_rods_stay_as_stable_as_their_integrator_for_60_s(string integrator) =>
-        CheckChains(integrator, 60, Enumerable.Range(2, 9));
+    [InlineData("semi-implicit-euler", 1e-3)]
+    [InlineData("semi-implicit-euler", 2e-3)]
+    [InlineData("implicit-euler", 1e-3)]
+    [InlineData("implicit-euler", 1.0 / 60)]
+    public void Chains_of_2_to_10_rods_stay_as_stable_as_their_integrator_for_60_s(string integrator, double dt) =>
+        CheckChains(integrator, 60, Enumerable.Range(2, 9), dt);
 
     /// <summary>
     /// n rods of <see cref="RodLength"/> and n particles of <see cref="Mass"/> in a row along x from an anchor at the
@@ -69,13 +77,15 @@ public class RodEnergyTests
     internal static double Released(int rods) => Mass * Gravity.StandardAcceleration * RodLength * rods * (rods + 1) / 2;
 
     /// <summary>
-    /// Semi-implicit Euler: |E - E0| stays below 1 % of the released energy at every step (a symplectic method's
-    /// bounded oscillation). Implicit Euler: E never rises above E0 beyond rounding, and its mean over each second is at
+    /// Semi-implicit Euler: E - E0 stays within -5 % and +1 % of the released energy per millisecond of step, at every
+    /// step: a symplectic method's bounded oscillation, whose amplitude is proportional to h, with dips where the
+    /// chain's end whips round (measured over 60 s: at 1 ms from -0.67 % (ten rods) to +0.44 % (two); at 2 ms from
+    /// -3.4 % (nine rods) to +0.87 % (two)); before, two rods gained 1,366 J of the 0.294 J released. Implicit Euler: E never rises above E0 beyond rounding, and its mean over each second is at
     /// most the second before's (it dissipates).
     /// </summary>
-    private void CheckChains(string integrator, double seconds, IEnumerable<int> chains)
+    private void CheckChains(string integrator, double seconds, IEnumerable<int> chains, double dt)
     {
-        var steps = (int)Math.Round(seconds / Dt);
+        var steps = (int)Math.Round(seconds / dt);
         foreach (var rods in chains)
         {
             var world = Chain(rods);
@@ -85,12 +95,12 @@ public class RodEnergyTests
             double highest = double.NegativeInfinity, lowest = double.PositiveInfinity;
             var means = new List<double>();
             var sum = 0.0;
-            var perWindow = (int)Math.Round(1 / Dt);
+            var perWindow = (int)Math.Round(1 / dt);
             for (var s = 1; s <= steps; s++)
             {
                 try
                 {
-                    world.Step(method, Dt);
+                    world.Step(method, dt);
                 }
                 catch (SimulationDivergedException e)
                 {
@@ -111,12 +121,14 @@ public class RodEnergyTests
             var rises = means.Zip(means.Skip(1), (a, b) => b - a).DefaultIfEmpty(0).Max();
             _output.WriteLine(string.Create(
                 CultureInfo.InvariantCulture,
-                $"{integrator}, {rods} rods, {seconds} s: E - E0 from {lowest:E3} to {highest:E3} J (released {released:F3} J), mean over the last second {means[^1]:E3} J, largest rise of a second's mean {rises:E3} J"));
+                $"{integrator} at {dt:G4} s, {rods} rods, {seconds} s: E - E0 from {lowest:E3} to {highest:E3} J (released {released:F3} J), mean over the last second {means[^1]:E3} J, largest rise of a second's mean {rises:E3} J"));
             if (integrator == "semi-implicit-euler")
             {
+                // A first-order symplectic method's energy oscillates about E0 with an amplitude proportional to h.
+                var perMillisecond = dt / 1e-3 * released;
                 Assert.True(
-                    Math.Max(highest, -lowest) < 0.01 * released,
-                    $"{rods} rods: E - E0 from {lowest:E3} to {highest:E3} J, beyond 1 % of the {released:F3} J released");
+                    highest < 0.01 * perMillisecond && lowest > -0.05 * perMillisecond,
+                    $"{rods} rods: E - E0 from {lowest:E3} to {highest:E3} J, the {released:F3} J released, at {dt} s");
             }
             else
             {
