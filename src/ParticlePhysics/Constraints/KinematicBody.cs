@@ -110,8 +110,8 @@ public sealed class KinematicBody
         }
 
         // Every target and every velocity first, so that a pose or a duration that would take one particle beyond the
-        // finite numbers changes nothing (the pose and the first particles' velocities were set before the check of the
-        // last one). The loop below computes the same velocities from the same values.
+        // finite numbers changes nothing, not even the pose or the particles before it. The loop below computes the same
+        // velocities from the same values.
         for (var a = 0; a < _particles.Count; a++)
         {
             var target = position + orientation.Rotate(_offsets[a]);

@@ -6,8 +6,9 @@ namespace ParticlePhysics.Constraints;
 
 /// <summary>
 /// Rods and cables between two particles, or between a particle and a fixed anchor. A rod holds its ends at exactly
-/// its length L: C = |x_i - x_j| - L = 0 (L from about 5.6e-309 m to 1.34e154 m: its inverse and its square finite). A cable holds them at most L apart (C &lt;= 0): a rod while taut, nothing
-/// while slack; going taut is an inelastic impact (the separating velocity is removed by an impulse along the cable).
+/// its length L: C = |x_i - x_j| - L = 0 (L from about 5.6e-309 m to 1.34e154 m: its inverse and its square finite).
+/// A cable holds them at most L apart (C &lt;= 0): a rod while taut, nothing while slack; going taut is an inelastic
+/// impact (the separating velocity is removed by an impulse along the cable).
 /// </summary>
 /// <remarks>
 /// <para>
@@ -363,10 +364,12 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces, IFor
     /// (d = x_i - x_j, lambda &lt; 0 pulling) changes with the ends' positions, at fixed lambda, by
     /// d(lambda d) / dx_i = lambda I: a zero-length spring of stiffness k = -lambda = T / |d|, the tension per unit length.
     /// Why: an implicit step that sees the tension only as a force applies it along the start's direction while the rod
-    /// turns, and that does work: measured under implicit Euler, a triple pendulum released horizontal gained energy
-    /// without bound, as under semi-implicit Euler. With this linearisation the step's tension acts along the end's
-    /// direction, lambda_0 (x1_i - x1_j), where the velocities are tangent to the rods to O(h^2): the tension does no
-    /// work to leading order, and implicit Euler dissipates |dv|_M^2 / 2 per step, as it does on any force. Left out:
+    /// turns, and that does work (on a chain under gravity the step is then semi-implicit Euler's, with its gain: see
+    /// ProjectIntoTheKick). With this linearisation the step's tension acts along the end's direction,
+    /// lambda_0 (x1_i - x1_j), where the velocities are tangent to the rods to O(h^2): the tension does no work to
+    /// leading order, and implicit Euler dissipates |dv|_M^2 / 2 per step, as it does on any force. On a uniform
+    /// rotation the step is backward Euler's on y' = i omega y: it turns by atan(h omega) and keeps
+    /// 1 / sqrt(1 + (h omega)^2) of the speed. Left out:
     /// the derivatives of lambda itself (J^T dlambda / dx, along the rods, dense over a chain and not symmetric), which
     /// the projection after the step stands in for; and a rod that pushes (lambda &gt; 0), whose positive stiffness
     /// could make the implicit system indefinite, as springs clamp their compressed transverse stiffness. No velocity
@@ -539,17 +542,18 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces, IFor
     /// <summary>
     /// SHAKE's projection after a kick and a drift (<see cref="ConstraintContext.KickDrift"/>): the end positions move
     /// along the gradients at the step's start, x1 += W J(x0)^T mu with C(x1) = 0, and the end velocities by the same
-    /// over dt, so that x1 = x0 + dt v1 still holds. Why (semi-implicit Euler with the explicit tension lambda of
-    /// <see cref="AddConstraintForces"/>, A = J W J^T, b_r = |e_r|^2 the rods' centripetal terms): the kick leaves the
-    /// tangent space, J(x0) v1 = -dt b, and the step's energy changes by (dt^2 / 2) (lambda^T A lambda - |Q|_W^2), in
-    /// which (dt^2 / 2) b^T A^-1 b grows as the fourth power of the speeds. Moving the positions alone onto the rods
-    /// leaves that energy in the velocities, and chains ran away (a triple pendulum from 0.589 J to 1e16 J in 3.4 s at
-    /// 1 ms). With mu (A mu = dt^2 b / 2 to leading order) folded into the kick, v1 . M dv = (J(x0) v1) . mu / dt takes
-    /// it back exactly, and the step is the constrained symplectic Euler method (Hairer, Lubich and Wanner, "Geometric
-    /// Numerical Integration", VII.1): v1 = v0 + dt W (Q(x0) + J(x0)^T Lambda), x1 = x0 + dt v1, C(x1) = 0, then the
-    /// velocities projected onto C' = 0 at x1 (RATTLE's second projection, which only removes energy). Its energy
-    /// stays bounded. The gradients must be the start's: along the end's, dv / dt would lie along the normals that
-    /// the velocity projection removes, and change nothing.
+    /// over dt, so that x1 = x0 + dt v1 still holds. Why, in the smooth form of <see cref="AddConstraintForces"/>
+    /// (A = J W J^T, b_r = |e_r|^2 the rods' centripetal terms, lambda the explicit tension, Q the applied forces): the
+    /// kick leaves the tangent space, J(x0) v1 = -dt b, and the kick and the drift change the energy by
+    /// (dt^2 / 2) (lambda^T A lambda - |Q|_W^2), in which (dt^2 / 2) b^T A^-1 b grows as the fourth power of the
+    /// speeds. Moving the positions alone onto the rods leaves that energy in the velocities, so chains run away. The
+    /// end lies off the rods by C(x1) = -dt^2 b / 2, so A mu = dt^2 b / 2 to leading order, and with mu folded into the
+    /// kick v1 . M dv = (J(x0) v1) . mu / dt = -(dt^2 / 2) b^T A^-1 b takes that back: the step is the constrained
+    /// symplectic Euler method (Hairer, Lubich and Wanner, "Geometric Numerical Integration", VII.1),
+    /// v1 = v0 + dt W (Q(x0) + J(x0)^T Lambda), x1 = x0 + dt v1, C(x1) = 0, then the velocities projected onto C' = 0
+    /// at x1 (RATTLE's second projection, which only removes energy), and its energy stays bounded. On a uniform
+    /// rotation it keeps the speed exactly and turns by asin(h omega). The gradients must be the start's: along the
+    /// end's, dv would lie along the normals that the velocity projection removes, and change nothing.
     /// mu is found by the quasi-Newton iteration of SHAKE, (J(x0) W J(x0)^T) dmu = -C(x): it contracts as fast as the
     /// rods turn in a step. An iteration that does not shrink the largest violation (a rod that turned by nearly a right
     /// angle, or a state far off its rods) is undone, and the Newton projection along the current gradients finishes

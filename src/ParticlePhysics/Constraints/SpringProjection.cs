@@ -331,12 +331,12 @@ public sealed class SpringProjection : IForceProjection
 
     /// <summary>
     /// dlambda where the usual form's numerator or denominator overflows (a stiffness near double.MaxValue on a light
-    /// particle: (k h^2 + c h) w = infinity made the correction 0, and the spring let its particle fall). Dividing
+    /// particle: (k h^2 + c h) w = infinity would make the correction 0, and the spring let its particle fall). Dividing
     /// through by s = k h^2 + c h gives the same value in terms that stay finite:
     /// dlambda = -(a C + b u . dx) / (w + 1 / s), a = k h^2 / s, b = c h / s (a + b = 1),
     /// which tends to the rigid projection -C / w as k grows. Where s itself overflows, 1 / s is taken as 0 (below the
-    /// rounding of w for any mass under 1e292 kg) and a, b from halves of the two terms, the infinite one (a substep
-    /// longer than 1e154 s) taking the whole.
+    /// rounding of w for any mass under 1e292 kg) and a, b from halves of the two terms; a term that is infinite itself
+    /// (a substep longer than 1e154 s) takes the whole, two of them half each.
     /// </summary>
     [MethodImpl(MethodImplOptions.NoInlining)]
     private static double StiffLimit(double stiffness, double damping, double violation, double moved, double w)
