@@ -44,6 +44,11 @@ internal static class ParseErrors
         }
 
         var message = parse.Errors[0].Message.Replace('\n', ' ').Replace('\r', ' ');
+        if (command.Name == SceneCommand.Name && message.StartsWith("Required argument missing", System.StringComparison.Ordinal))
+        {
+            return "scene needs a scene file: scene FILE.json [options] (samples/scenes/ has examples; docs/scenes.md describes the format).";
+        }
+
         const string missing = "Required argument missing for option: '";
         if (message.StartsWith(missing, System.StringComparison.Ordinal))
         {

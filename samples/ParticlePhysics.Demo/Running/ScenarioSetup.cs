@@ -48,6 +48,15 @@ internal abstract class ScenarioSetup
     /// </summary>
     public virtual IReadOnlyList<string> SummaryDetails => Array.Empty<string>();
 
+    /// <summary>The json header's name for what runs: <c>scenario</c>, or <c>scene</c> for a scene file.</summary>
+    public virtual string JsonNameKey => "scenario";
+
+    /// <summary>True when the json header lists <see cref="Parameters"/> (a scene's are in its file).</summary>
+    public virtual bool HasParameters => true;
+
+    /// <summary>The json summary's <c>final</c> object, or null for the <see cref="SummaryColumns"/> of the final row.</summary>
+    public virtual string? FinalJson(RunOutcome outcome) => null;
+
     /// <summary>The exact value of <paramref name="exactColumn"/> (one of the <c>..._exact</c> columns) at any time, for smooth plots.</summary>
     public double ExactValue(string exactColumn, double time)
     {

@@ -61,6 +61,7 @@ internal static class ConvergenceCommand
             if (parse.GetValue(plot) is { } plotPath)
             {
                 OutputFile.CheckWritable("--plot", plotPath);
+                OutputFile.CheckExtension("--plot", plotPath, "SVG", ".svg");
             }
 
             var names = parse.GetValue(integrator) is { } one
