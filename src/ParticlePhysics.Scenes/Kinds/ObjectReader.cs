@@ -334,7 +334,7 @@ internal sealed class ObjectReader
             throw Error(v, path, "must be " + Allowed(rule, unit).TrimStart('('));
         }
 
-        return x == 0 ? 0.0 : x; // -0 reads as 0
+        return x;
     }
 
     /// <summary>What a rule allows, in words, with the unit.</summary>
