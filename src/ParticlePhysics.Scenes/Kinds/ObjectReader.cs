@@ -115,7 +115,7 @@ internal sealed class ObjectReader
         var value = Get(key);
         if (value is not { } v)
         {
-            return defaultValue ?? throw Missing(key, "a number " + Allowed(rule, unit));
+            return defaultValue ?? throw Missing(key, Allowed(rule, unit));
         }
 
         return CheckNumber(v, PathOf(key), rule, unit);
@@ -345,7 +345,7 @@ internal sealed class ObjectReader
         {
             ValueRule.NonNegative => "a number >= 0" + units,
             ValueRule.Positive => "a positive number" + units,
-            ValueRule.Mass => "a positive number whose inverse is finite (at least 5.6e-309)" + units,
+            ValueRule.Mass => "a positive number" + units + " whose inverse is finite (at least 5.6e-309)",
             ValueRule.Fraction => "a number from 0 to 1",
             _ => "a finite number" + units,
         };
