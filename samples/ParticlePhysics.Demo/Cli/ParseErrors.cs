@@ -62,7 +62,7 @@ internal static class ParseErrors
     private static string UnknownConvergenceScenario(Command convergence, string token)
     {
         var names = convergence.Subcommands.Select(c => c.Name).ToArray();
-        var why = token == "cloth" ? " (the cloth has no exact solution to measure the error against)" : Suggestions.DidYouMean(token, names);
+        var why = ConvergenceCommand.Refusal(token) is { } refusal ? $" ({refusal})" : Suggestions.DidYouMean(token, names);
         return $"convergence cannot run '{token}'{why}; expected one of: {string.Join(", ", names)}.";
     }
 

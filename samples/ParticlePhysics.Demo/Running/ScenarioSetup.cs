@@ -48,6 +48,9 @@ internal abstract class ScenarioSetup
     /// </summary>
     public virtual IReadOnlyList<string> SummaryDetails => Array.Empty<string>();
 
+    /// <summary>When the motion ends (the bouncing ball comes to rest), in s, or null: a summary says so where it shows a still state.</summary>
+    public virtual double? MotionEnds => null;
+
     /// <summary>The json header's name for what runs: <c>scenario</c>, or <c>scene</c> for a scene file.</summary>
     public virtual string JsonNameKey => "scenario";
 
