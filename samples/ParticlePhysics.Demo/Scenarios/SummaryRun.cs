@@ -56,7 +56,7 @@ internal static class SummaryRun
                 var error = outcome.Diverged is { } d
                     ? $"diverged at t = {Numbers.Brief(d.Time)}"
                     : outcome.FinalError is { } e ? Numbers.Error(e) : "n/a";
-                var state = Summary.FinalState(setup, outcome.FinalRow);
+                var state = Summary.FinalState(setup, outcome.FinalRow, particleLabels: true);
                 if (setup.MotionEnds is { } end && end < outcome.FinalTime)
                 {
                     // Zeros that mean "at rest", not "nothing happened": say when the motion ended.

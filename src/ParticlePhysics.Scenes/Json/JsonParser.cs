@@ -345,14 +345,30 @@ internal sealed class JsonParser
             Next();
             switch (e)
             {
-                case '"': _text.Append('"'); break;
-                case '\\': _text.Append('\\'); break;
-                case '/': _text.Append('/'); break;
-                case 'b': _text.Append('\b'); break;
-                case 'f': _text.Append('\f'); break;
-                case 'n': _text.Append('\n'); break;
-                case 'r': _text.Append('\r'); break;
-                case 't': _text.Append('\t'); break;
+                case '"':
+                    _text.Append('"');
+                    break;
+                case '\\':
+                    _text.Append('\\');
+                    break;
+                case '/':
+                    _text.Append('/');
+                    break;
+                case 'b':
+                    _text.Append('\b');
+                    break;
+                case 'f':
+                    _text.Append('\f');
+                    break;
+                case 'n':
+                    _text.Append('\n');
+                    break;
+                case 'r':
+                    _text.Append('\r');
+                    break;
+                case 't':
+                    _text.Append('\t');
+                    break;
                 case 'u':
                     var code = 0;
                     for (var k = 0; k < 4; k++)

@@ -16,7 +16,7 @@ namespace ParticlePhysics.Tests.Scenes;
 /// </summary>
 public class SceneCorpusTests
 {
-    private static readonly string Folder = Path.Combine(ReadmeExamplesTests.RepositoryRoot(), "samples", "scenes");
+    private static readonly string _folder = Path.Combine(ReadmeExamplesTests.RepositoryRoot(), "samples", "scenes");
 
     private const string Ok = "{ \"objects\": [{ \"type\": \"particles\", \"positions\": [[0, 1, 0], [1, 1, 0]] }] }";
 
@@ -311,7 +311,7 @@ public class SceneCorpusTests
     }
 
     private static List<(string Name, string Text)> SampleTexts() =>
-        Directory.GetFiles(Folder, "*.json").OrderBy(f => f, StringComparer.Ordinal)
+        Directory.GetFiles(_folder, "*.json").OrderBy(f => f, StringComparer.Ordinal)
             .Where(f => new FileInfo(f).Length < 40_000) // the cloth and the drape: mutations of their long lists say nothing more
             .Select(f => (Path.GetFileName(f), File.ReadAllText(f))).ToList();
 

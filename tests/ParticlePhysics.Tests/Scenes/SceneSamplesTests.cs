@@ -11,7 +11,7 @@ namespace ParticlePhysics.Tests.Scenes;
 /// <summary>The sample scenes: the course's scenarios as scenes give the scenario command's rows bit for bit.</summary>
 public class SceneSamplesTests
 {
-    private static readonly string Folder = Path.Combine(ReadmeExamplesTests.RepositoryRoot(), "samples", "scenes");
+    private static readonly string _folder = Path.Combine(ReadmeExamplesTests.RepositoryRoot(), "samples", "scenes");
 
     [Fact]
     public void The_course_scenes_are_what_their_writer_writes()
@@ -19,7 +19,7 @@ public class SceneSamplesTests
         var rewrite = Environment.GetEnvironmentVariable("PP_WRITE_SCENES") == "1";
         foreach (var (name, text) in CourseSceneFiles.All())
         {
-            var path = Path.Combine(Folder, name + ".json");
+            var path = Path.Combine(_folder, name + ".json");
             if (rewrite)
             {
                 File.WriteAllText(path, text);
@@ -58,7 +58,7 @@ public class SceneSamplesTests
         };
         var options = scenario == "two-mass-chain" ? CourseSceneFiles.TwoMassChainOptions : Array.Empty<string>();
         var expected = DemoProcess.Run(new[] { scenario, "--integrator", integrator, "--format", "csv" }.Concat(duration).Concat(options).ToArray());
-        var actual = DemoProcess.Run(new[] { "scene", Path.Combine(Folder, scenario + ".json"), "--integrator", integrator, "--format", "csv" }.Concat(duration).ToArray());
+        var actual = DemoProcess.Run(new[] { "scene", Path.Combine(_folder, scenario + ".json"), "--integrator", integrator, "--format", "csv" }.Concat(duration).ToArray());
         Assert.Equal(0, expected.ExitCode);
         Assert.True(actual.ExitCode == 0, actual.Error);
         var want = Table(expected.Output);
@@ -93,7 +93,7 @@ public class SceneSamplesTests
         // Spring 2 at rest length 0: the scene's zero-rest-length spring -k (x0 - x1) against the scenario's
         // rest-length formula at L = 0, -k l u: the same force but for rounding, over the chain's 20 s.
         var file = Path.Combine(Path.GetTempPath(), $"chain-{Guid.NewGuid():N}.json");
-        File.WriteAllText(file, File.ReadAllText(Path.Combine(Folder, "two-mass-chain.json"))
+        File.WriteAllText(file, File.ReadAllText(Path.Combine(_folder, "two-mass-chain.json"))
             .Replace("\"restLength\": 0.5", "\"restLength\": 0", StringComparison.Ordinal)
             .Replace("[0, -1.5, 0]", "[0, -1, 0]", StringComparison.Ordinal));
         try
