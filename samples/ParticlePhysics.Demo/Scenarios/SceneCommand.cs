@@ -69,6 +69,11 @@ internal static class SceneCommand
                 return ExitCodes.Success;
             }
 
+            if (scene.ParticleCount == 0)
+            {
+                throw new UsageException($"{path}: the scene has no particles to run; add an object such as {{\"type\": \"particles\", \"positions\": [[0, 1, 0]]}}.");
+            }
+
             var settings = scene.Settings;
             var step = parse.GetValue(dt) ?? settings.TimeStep;
             var steps = RunPlan.StepsFor(parse.GetValue(duration) ?? settings.Duration, step);

@@ -52,8 +52,8 @@ public class SceneSamplesTests
         var duration = scenario switch
         {
             "cloth" or "drape" => new[] { "--duration", "0.2" },
-            "hanging-chain" => new[] { "--duration", "2" },
-            "pendulum" => new[] { "--duration", "3" },
+            "hanging-chain" => new[] { "--duration", "1" },
+            "pendulum" or "bouncing-ball" => new[] { "--duration", "2" },
             _ => Array.Empty<string>(),
         };
         var options = scenario == "two-mass-chain" ? CourseSceneFiles.TwoMassChainOptions : Array.Empty<string>();
