@@ -38,6 +38,8 @@ namespace ParticlePhysics.Benchmarks;
 /// (<see cref="ContactCosts"/>).</item>
 /// <item><c>preconditioners [--n 32] [--frames 30] [--omega 0.6]</c>: conjugate-gradient iterations on one real
 /// implicit-Euler step of the cloth with candidate preconditioners (<see cref="PreconditionerLab"/>; slow, no timing).</item>
+/// <item><c>obj [--vertices 1000000] [--rounds 7]</c>: the OBJ reader's throughput in MB/s on a generated mesh
+/// (<see cref="ObjThroughput"/>).</item>
 /// <item><c>--quick</c> (before BenchmarkDotNet's arguments): small cloths, for CI.</item>
 /// </list>
 /// After a BenchmarkDotNet run it exits 1 if any benchmark failed or has no result (NA).
@@ -49,6 +51,11 @@ internal static class Program
         if (args.Length > 0 && args[0] == "preconditioners")
         {
             return PreconditionerLab.Run(args[1..]);
+        }
+
+        if (args.Length > 0 && args[0] == "obj")
+        {
+            return ObjThroughput.Run(args[1..]);
         }
 
         if (args.Length > 0 && args[0] == "verify")
