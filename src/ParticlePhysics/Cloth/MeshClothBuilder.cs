@@ -300,7 +300,7 @@ public sealed class MeshClothBuilder
             return masses;
         }
 
-        var triangles = Mesh.ParticleTriangles;
+        var triangles = Mesh.ParticleTriangles.ForReading();
         for (var t = 0; t < Mesh.TriangleCount; t++)
         {
             var third = density * Mesh.TriangleArea(t) / 3.0;
@@ -372,7 +372,7 @@ public sealed class MeshClothBuilder
         if (_stretch == ClothStretch.Membrane)
         {
             Guard.NotNull(membrane, nameof(membrane));
-            var triangles = Mesh.ParticleTriangles;
+            var triangles = Mesh.ParticleTriangles.ForReading();
             for (var t = 0; t < Mesh.TriangleCount; t++)
             {
                 int a = triangles[3 * t], b = triangles[(3 * t) + 1], c = triangles[(3 * t) + 2];
@@ -470,12 +470,12 @@ public sealed class MeshClothBuilder
 
     private void AddSprings(SpringNetwork springs, int first)
     {
-        var particleOf = Mesh.ParticleOfVertex;
+        var particleOf = Mesh.ParticleOfVertex.ForReading();
         if (_stretch == ClothStretch.EdgeSprings)
         {
             // Every edge once, in the order the triangles first name it.
             var seen = new HashSet<long>();
-            var triangles = Mesh.ParticleTriangles;
+            var triangles = Mesh.ParticleTriangles.ForReading();
             for (var t = 0; t < Mesh.TriangleCount; t++)
             {
                 for (var e = 0; e < 3; e++)

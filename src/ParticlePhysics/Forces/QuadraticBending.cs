@@ -310,17 +310,19 @@ public sealed class QuadraticBending : IForceGenerator, IPotentialEnergy, IBound
     public void AddCouplingBlocks(Span<double> destination, ReadOnlySpan<int> forwardBlock, ReadOnlySpan<int> backwardBlock)
     {
         CheckLinearized();
+        var forward = forwardBlock.ForReading();
+        var backward = backwardBlock.ForReading();
         for (var c = 0; c < _upper.Length; c++)
         {
             var s = -_positionScale * _values[_upper[c]];
-            if (forwardBlock[c] >= 0)
+            if (forward[c] >= 0)
             {
-                AddIsotropicBlock(destination, forwardBlock[c], s);
+                AddIsotropicBlock(destination, forward[c], s);
             }
 
-            if (backwardBlock[c] >= 0)
+            if (backward[c] >= 0)
             {
-                AddIsotropicBlock(destination, backwardBlock[c], s);
+                AddIsotropicBlock(destination, backward[c], s);
             }
         }
     }
