@@ -68,6 +68,10 @@ public sealed class SpringProjection : IForceProjection
     private AnchoredSpring[] _anchored = Array.Empty<AnchoredSpring>();
     private double _preparedStep = double.NaN;
 
+    // Every pair spring without damping: the projection then skips the damping's terms (the start positions and the
+    // move along the spring), a third of the memory each spring reads. The same values: c h (u . dx) adds 0.
+    private bool _undamped;
+
     // The layout (ConstraintPartition): batch b is _pairs[_pairStarts[b] ..] and _anchored[_anchoredStarts[b] ..];
     // group g is the batches [_groupBatchStarts[g], _groupBatchStarts[g + 1]); phase f the groups
     // [_phaseStarts[f], _phaseStarts[f + 1]).
@@ -209,7 +213,15 @@ public sealed class SpringProjection : IForceProjection
     {
         for (var b = _groupBatchStarts[begin]; b < _groupBatchStarts[end]; b++)
         {
-            ProjectPairs(pairs, _pairStarts[b], _pairStarts[b + 1], x, x0, w);
+            if (_undamped)
+            {
+                ProjectUndampedPairs(pairs, _pairStarts[b], _pairStarts[b + 1], x, w);
+            }
+            else
+            {
+                ProjectPairs(pairs, _pairStarts[b], _pairStarts[b + 1], x, x0, w);
+            }
+
             int anchoredBegin = _anchoredStarts[b], anchoredEnd = _anchoredStarts[b + 1];
             if (anchoredBegin < anchoredEnd)
             {
@@ -233,12 +245,20 @@ public sealed class SpringProjection : IForceProjection
             var chunks = Math.Min(2 * runner.MaxParallelism, size / MinSpringsPerChunk);
             if (chunks > 1)
             {
-                _batchPass.Set(pairs, pairBegin, pairEnd, anchored, anchoredBegin, anchoredEnd, x, x0, w);
+                _batchPass.Set(pairs, pairBegin, pairEnd, anchored, anchoredBegin, anchoredEnd, x, x0, w, _undamped);
                 runner.Run(_batchPass, chunks);
                 continue;
             }
 
-            ProjectPairs(pairs, pairBegin, pairEnd, x, x0, w);
+            if (_undamped)
+            {
+                ProjectUndampedPairs(pairs, pairBegin, pairEnd, x, w);
+            }
+            else
+            {
+                ProjectPairs(pairs, pairBegin, pairEnd, x, x0, w);
+            }
+
             ProjectAnchored(anchored, anchoredBegin, anchoredEnd, x, x0, w);
         }
     }
@@ -284,6 +304,49 @@ public sealed class SpringProjection : IForceProjection
             double cx = dlambda * ux, cy = dlambda * uy, cz = dlambda * uz;
 
             // The two ends are distinct particles (checked in Refresh), so the values read above are still theirs.
+            xi[0] = xi0 + (wi * cx);
+            xi[1] = xi1 + (wi * cy);
+            xi[2] = xi2 + (wi * cz);
+            xj[0] = xj0 - (wj * cx);
+            xj[1] = xj1 - (wj * cy);
+            xj[2] = xj2 - (wj * cz);
+        }
+    }
+
+    /// <summary>
+    /// <see cref="ProjectPairs"/> for springs without damping (c h = 0): dlambda = -k h^2 C / (k h^2 w + 1), without
+    /// reading the start positions.
+    /// </summary>
+    private static unsafe void ProjectUndampedPairs(PairSpring* springs, int begin, int end, double* x, double* w)
+    {
+        for (PairSpring* p = springs + begin, last = springs + end; p < last; p++)
+        {
+            uint a = p->First, b = p->Second;
+            double wi = w[a], wj = w[b];
+            var wsum = wi + wj;
+            if (wsum == 0.0)
+            {
+                continue;
+            }
+
+            double* xi = x + (3L * a), xj = x + (3L * b);
+            double xi0 = xi[0], xi1 = xi[1], xi2 = xi[2], xj0 = xj[0], xj1 = xj[1], xj2 = xj[2];
+            double dx = xi0 - xj0, dy = xi1 - xj1, dz = xi2 - xj2;
+            var squared = (dx * dx) + (dy * dy) + (dz * dz);
+            if (squared == 0.0)
+            {
+                continue;
+            }
+
+            var l = Math.Sqrt(squared);
+            var inverse = 1.0 / l;
+            double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
+            var numerator = p->Stiffness * (l - p->RestLength);
+            var denominator = (p->Stiffness * wsum) + 1.0;
+            var dlambda = denominator <= double.MaxValue && Math.Abs(numerator) <= double.MaxValue
+                ? -numerator / denominator
+                : StiffLimit(p->Stiffness, 0.0, l - p->RestLength, 0.0, wsum);
+            double cx = dlambda * ux, cy = dlambda * uy, cz = dlambda * uz;
             xi[0] = xi0 + (wi * cx);
             xi[1] = xi1 + (wi * cy);
             xi[2] = xi2 + (wi * cz);
@@ -469,6 +532,12 @@ public sealed class SpringProjection : IForceProjection
             }
         }
 
+        _undamped = true;
+        for (var k = 1; k < _pairCoefficients.Length; k += 2)
+        {
+            _undamped &= _pairCoefficients[k] == 0.0;
+        }
+
         _preparedStep = double.NaN;
         _count = count;
         _particles = particles;
@@ -619,11 +688,13 @@ public sealed class SpringProjection : IForceProjection
         private int _pairEnd;
         private int _anchoredBegin;
         private int _anchoredEnd;
+        private bool _undamped;
 
         public void Set(
             PairSpring* pairs, int pairBegin, int pairEnd, AnchoredSpring* anchored, int anchoredBegin, int anchoredEnd,
-            double* x, double* x0, double* w)
+            double* x, double* x0, double* w, bool undamped)
         {
+            _undamped = undamped;
             _pairs = pairs;
             _pairBegin = pairBegin;
             _pairEnd = pairEnd;
@@ -638,7 +709,14 @@ public sealed class SpringProjection : IForceProjection
         public void Execute(int chunk, int chunkCount)
         {
             var (pairBegin, pairEnd) = Chunk.Range(chunk, chunkCount, _pairEnd - _pairBegin);
-            ProjectPairs(_pairs, _pairBegin + pairBegin, _pairBegin + pairEnd, _x, _x0, _w);
+            if (_undamped)
+            {
+                ProjectUndampedPairs(_pairs, _pairBegin + pairBegin, _pairBegin + pairEnd, _x, _w);
+            }
+            else
+            {
+                ProjectPairs(_pairs, _pairBegin + pairBegin, _pairBegin + pairEnd, _x, _x0, _w);
+            }
             var (anchoredBegin, anchoredEnd) = Chunk.Range(chunk, chunkCount, _anchoredEnd - _anchoredBegin);
             ProjectAnchored(_anchored, _anchoredBegin + anchoredBegin, _anchoredBegin + anchoredEnd, _x, _x0, _w);
         }

@@ -9,18 +9,18 @@ public class WeldedMeshTests
 {
     // Two unit squares side by side, each its own two triangles with its own four vertices: the shared edge (x = 1) is a
     // UV seam, vertices 1 and 4, 2 and 7 at one position.
-    private static readonly double[] SeamVertices =
+    private static readonly double[] _seamVertices =
     {
         0, 0, 0, 1, 0, 0, 1, 0, 1, 0, 0, 1, // square A: 0..3
         1, 0, 0, 2, 0, 0, 2, 0, 1, 1, 0, 1, // square B: 4..7
     };
 
-    private static readonly int[] SeamTriangles = { 0, 3, 1, 1, 3, 2, 4, 7, 5, 5, 7, 6 };
+    private static readonly int[] _seamTriangles = { 0, 3, 1, 1, 3, 2, 4, 7, 5, 5, 7, 6 };
 
     [Fact]
     public void A_seam_is_welded_into_one_particle_per_position_with_the_maps_both_ways()
     {
-        var mesh = new WeldedMesh(SeamVertices, SeamTriangles);
+        var mesh = new WeldedMesh(_seamVertices, _seamTriangles);
         Assert.Equal(8, mesh.VertexCount);
         Assert.Equal(6, mesh.ParticleCount);
         Assert.Equal(4, mesh.TriangleCount);
@@ -29,14 +29,14 @@ public class WeldedMeshTests
         Assert.Equal(new[] { 1, 4 }, mesh.VerticesOf(1).ToArray());
         Assert.Equal(new[] { 2, 7 }, mesh.VerticesOf(2).ToArray());
         Assert.Equal(new[] { 0 }, mesh.VerticesOf(0).ToArray());
-        Assert.Equal(SeamTriangles, mesh.Triangles.ToArray());
+        Assert.Equal(_seamTriangles, mesh.Triangles.ToArray());
         Assert.Equal(new[] { 0, 3, 1, 1, 3, 2, 1, 2, 4, 4, 2, 5 }, mesh.ParticleTriangles.ToArray());
     }
 
     [Fact]
     public void Render_vertices_of_a_seam_get_the_welded_particles_position_and_normal()
     {
-        var cloth = new MeshClothBuilder(new WeldedMesh(SeamVertices, SeamTriangles)) { Gravity = 0 }.Build();
+        var cloth = new MeshClothBuilder(new WeldedMesh(_seamVertices, _seamTriangles)) { Gravity = 0 }.Build();
 
         // Fold the sheet about the seam: square B turns up by 90 degrees, so the seam's normal is the mean of both.
         var world = cloth.System;
@@ -68,7 +68,7 @@ public class WeldedMeshTests
     [Fact]
     public void Masses_are_lumped_a_third_of_each_triangle_to_each_corner()
     {
-        var builder = new MeshClothBuilder(new WeldedMesh(SeamVertices, SeamTriangles)) { AreaDensity = 3 };
+        var builder = new MeshClothBuilder(new WeldedMesh(_seamVertices, _seamTriangles)) { AreaDensity = 3 };
         var masses = builder.ParticleMasses();
 
         // Area 2 m^2 at 3 kg/m^2: 6 kg; each triangle of 0.5 m^2 gives 0.5 kg to each corner.
@@ -102,7 +102,7 @@ public class WeldedMeshTests
         Check(ClothMeshProblem.UnusedVertex, -1, 3, () => new WeldedMesh(square, new[] { 0, 1, 2 }), "used by no triangle");
         double[] nan = { 0, 0, 0, 1, 0, double.NaN, 1, 0, 1, 0, 0, 1 };
         Check(ClothMeshProblem.NonFiniteVertex, -1, 1, () => new WeldedMesh(nan, new[] { 0, 1, 2, 0, 2, 3 }), "finite");
-        Check(ClothMeshProblem.DuplicateVertex, -1, 4, () => new WeldedMesh(SeamVertices, SeamTriangles, weld: false), "Vertices 1 and 4");
+        Check(ClothMeshProblem.DuplicateVertex, -1, 4, () => new WeldedMesh(_seamVertices, _seamTriangles, weld: false), "Vertices 1 and 4");
         Check(ClothMeshProblem.Shape, -1, -1, () => new WeldedMesh(square, Array.Empty<int>()), "no triangle");
         Check(ClothMeshProblem.Shape, -1, -1, () => new WeldedMesh(new double[] { 0, 0 }, new[] { 0, 0, 0 }), "3 coordinates");
 
