@@ -121,7 +121,7 @@ def flag():
             "pinned": pole,
             "thickness": 0.01,
         }],
-        "colliders": [{"type": "sphere", "center": [0.8, 0.9, 0.3], "radius": 0.25}],
+        "colliders": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]}],
     }
 
 
@@ -147,7 +147,7 @@ def ropes():
 
 dump("samples/scenes/flag.json", [
     "A flag from an OBJ mesh cut along a UV seam: welded into one cloth of membrane (Y = 1000 N/m, nu = 0.3) and",
-    "plate bending (D = 1e-4 N m), pinned along its pole, falling onto a sphere. Written by tools/make-scene-samples.py.",
+    "plate bending (D = 1e-4 N m), pinned along its pole and hanging from it. Written by tools/make-scene-samples.py.",
 ], flag())
 dump("samples/scenes/ropes.json", [
     "Two ropes of 1 m: one held out horizontally by its first two points, with bending rigidity EI = 2.5 N m^2, which",
