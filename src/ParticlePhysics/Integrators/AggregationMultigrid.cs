@@ -2,6 +2,7 @@ using System;
 using System.Collections.Generic;
 using System.Numerics;
 using System.Runtime.CompilerServices;
+using ParticlePhysics.Numerics;
 using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics.Integrators;
