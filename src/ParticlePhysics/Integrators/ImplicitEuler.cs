@@ -381,9 +381,9 @@ public sealed class ImplicitEuler : IStatefulIntegrator
 
     /// <summary>
     /// Solves the leading m x m block of the Gram matrix (row stride <paramref name="stride"/>) against the
-    /// projections into <see cref="_startCoefficients"/>, by <see cref="LuSolve"/>; false when a pivot is at most 1e-12
-    /// of the block's largest entry, when m = 1 and u . q is not positive (u . q ~ u . A u must be, A being positive
-    /// definite, else the product is not to be trusted), or when a coefficient is not finite.
+    /// projections into <see cref="_startCoefficients"/>, by LU (<see cref="DenseLinearSolver.SolveLu"/>); false when
+    /// a pivot is at most 1e-12 of the block's largest entry, when m = 1 and u . q is not positive (u . q ~ u . A u
+    /// must be, A being positive definite, else the product is not to be trusted), or when a coefficient is not finite.
     /// </summary>
     private bool SolveGalerkin(int m, int stride)
     {
@@ -399,7 +399,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
             _startCoefficients[i] = _projections[i];
         }
 
-        if ((m == 1 && !(_elimination[0] > 0.0)) || !LuSolve(_elimination, _eliminationPivots, _startCoefficients, m, 1e-12 * scale))
+        if ((m == 1 && !(_elimination[0] > 0.0)) || !DenseLinearSolver.SolveLu(_elimination, _eliminationPivots, _startCoefficients, m, 1e-12 * scale))
         {
             return false;
         }
@@ -534,7 +534,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
                 delta[i] = -(y[i] - y0[i] - (h * f[i]));
             }
 
-            if (!LuSolve(matrix, pivots, delta, n))
+            if (!DenseLinearSolver.SolveLu(matrix, pivots, delta, n))
             {
                 break;
             }
@@ -557,64 +557,5 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         LastResidual = update;
         LastConverged = update <= NewtonTolerance;
         y.AsSpan().CopyTo(next);
-    }
-
-    /// <summary>
-    /// Solves A x = b in place by Gaussian elimination with partial pivoting (A n x n row-major, overwritten by its LU
-    /// factors; b becomes x). False if a pivot's magnitude is at most <paramref name="smallestPivot"/> (0: singular).
-    /// </summary>
-    private static bool LuSolve(double[] a, int[] pivots, double[] b, int n, double smallestPivot = 0.0)
-    {
-        for (var col = 0; col < n; col++)
-        {
-            var pivot = col;
-            for (var row = col + 1; row < n; row++)
-            {
-                if (Math.Abs(a[(row * n) + col]) > Math.Abs(a[(pivot * n) + col]))
-                {
-                    pivot = row;
-                }
-            }
-
-            if (Math.Abs(a[(pivot * n) + col]) <= smallestPivot)
-            {
-                return false;
-            }
-
-            pivots[col] = pivot;
-            if (pivot != col)
-            {
-                for (var k = 0; k < n; k++)
-                {
-                    (a[(col * n) + k], a[(pivot * n) + k]) = (a[(pivot * n) + k], a[(col * n) + k]);
-                }
-
-                (b[col], b[pivot]) = (b[pivot], b[col]);
-            }
-
-            for (var row = col + 1; row < n; row++)
-            {
-                var factor = a[(row * n) + col] / a[(col * n) + col];
-                for (var k = col; k < n; k++)
-                {
-                    a[(row * n) + k] -= factor * a[(col * n) + k];
-                }
-
-                b[row] -= factor * b[col];
-            }
-        }
-
-        for (var row = n - 1; row >= 0; row--)
-        {
-            var sum = b[row];
-            for (var k = row + 1; k < n; k++)
-            {
-                sum -= a[(row * n) + k] * b[k];
-            }
-
-            b[row] = sum / a[(row * n) + row];
-        }
-
-        return true;
     }
 }
