@@ -1536,36 +1536,7 @@ internal sealed unsafe class AggregationMultigrid
             var a = _dense;
             Array.Clear(a, 0, a.Length);
             FillDense(a, n);
-
-            // In-place Cholesky, lower triangle: A = L L^T.
-            for (var j = 0; j < n; j++)
-            {
-                var s = a[(j * n) + j];
-                for (var k = 0; k < j; k++)
-                {
-                    s -= a[(j * n) + k] * a[(j * n) + k];
-                }
-
-                if (!(s > 0.0) || double.IsInfinity(s))
-                {
-                    return;
-                }
-
-                var pivot = Math.Sqrt(s);
-                a[(j * n) + j] = pivot;
-                for (var i = j + 1; i < n; i++)
-                {
-                    var t = a[(i * n) + j];
-                    for (var k = 0; k < j; k++)
-                    {
-                        t -= a[(i * n) + k] * a[(j * n) + k];
-                    }
-
-                    a[(i * n) + j] = t / pivot;
-                }
-            }
-
-            _denseValid = true;
+            _denseValid = DenseLinearSolver.FactorCholesky(a, n);
         }
 
         /// <summary>X = A^-1 B by the Cholesky factors, or X = D^-1 B when there are none.</summary>
@@ -1581,29 +1552,7 @@ internal sealed unsafe class AggregationMultigrid
                 return;
             }
 
-            var n = 3 * Count;
-            var a = _dense!;
-            for (var i = 0; i < n; i++)
-            {
-                var s = B[i];
-                for (var k = 0; k < i; k++)
-                {
-                    s -= a[(i * n) + k] * X[k];
-                }
-
-                X[i] = s / a[(i * n) + i];
-            }
-
-            for (var i = n - 1; i >= 0; i--)
-            {
-                var s = X[i];
-                for (var k = i + 1; k < n; k++)
-                {
-                    s -= a[(k * n) + i] * X[k];
-                }
-
-                X[i] = s / a[(i * n) + i];
-            }
+            DenseLinearSolver.SolveCholesky(_dense!, 3 * Count, B, X);
         }
     }
 }
