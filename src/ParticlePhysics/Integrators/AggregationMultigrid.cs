@@ -614,7 +614,7 @@ internal sealed unsafe class AggregationMultigrid
                 // The chunk's members are one range of particles: the update over its coordinates first, with SIMD
                 // where the runtime has it (the same operations per component), then the restriction below reads the
                 // new r and sums r . r in the same member order as the update per member does.
-                ConjugateGradientPasses.UpdateRange(
+                ConjugateGradientUpdate.Range(
                     _z, _jw, _coordinateMasses, _p, _s, _dv, _r, Alpha, Beta, 3L * _chunkMembers[2 * chunk], 3L * _chunkMembers[(2 * chunk) + 1]);
                 _partial[chunk] = RestrictUpdated(begin, end);
                 return;
@@ -647,9 +647,9 @@ internal sealed unsafe class AggregationMultigrid
                     {
                         var o = 3L * i;
                         var mass = masses[i];
-                        var r0 = ConjugateGradientPasses.UpdateComponent(z, jw, mass, p, s, dv, residual, alpha, beta, o);
-                        var r1 = ConjugateGradientPasses.UpdateComponent(z, jw, mass, p, s, dv, residual, alpha, beta, o + 1);
-                        var r2 = ConjugateGradientPasses.UpdateComponent(z, jw, mass, p, s, dv, residual, alpha, beta, o + 2);
+                        var r0 = ConjugateGradientUpdate.Component(z, jw, mass, p, s, dv, residual, alpha, beta, o);
+                        var r1 = ConjugateGradientUpdate.Component(z, jw, mass, p, s, dv, residual, alpha, beta, o + 1);
+                        var r2 = ConjugateGradientUpdate.Component(z, jw, mass, p, s, dv, residual, alpha, beta, o + 2);
                         sum += r0 * r0;
                         sum += r1 * r1;
                         sum += r2 * r2;

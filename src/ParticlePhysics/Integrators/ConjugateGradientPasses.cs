@@ -1,5 +1,4 @@
 using System;
-using System.Numerics;
 using System.Runtime.CompilerServices;
 using ParticlePhysics.Numerics;
 using ParticlePhysics.Parallel;
@@ -545,9 +544,9 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         {
             var o = 3 * i;
             var mass = masses[i];
-            var r0 = UpdateComponent(z, jw, mass, p, s, dv, r, alpha, beta, o);
-            var r1 = UpdateComponent(z, jw, mass, p, s, dv, r, alpha, beta, o + 1);
-            var r2 = UpdateComponent(z, jw, mass, p, s, dv, r, alpha, beta, o + 2);
+            var r0 = ConjugateGradientUpdate.Component(z, jw, mass, p, s, dv, r, alpha, beta, o);
+            var r1 = ConjugateGradientUpdate.Component(z, jw, mass, p, s, dv, r, alpha, beta, o + 1);
+            var r2 = ConjugateGradientUpdate.Component(z, jw, mass, p, s, dv, r, alpha, beta, o + 2);
             sum += r0 * r0;
             sum += r1 * r1;
             sum += r2 * r2;
@@ -667,64 +666,6 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
         (sums[5], sums[6], sums[7], sums[8], sums[9]) = (t0, t1, t2, t3, tb);
     }
 
-    /// <summary>
-    /// One component k of the iteration's update, p = z + beta p, s = w + beta s with w = M z - jw (the value that
-    /// <see cref="MassMinusJacobian"/> summed; jw is then cleared for the next product), dv += alpha p, r -= alpha s;
-    /// returns the new r. Shared with the multigrid's pass that fuses the update with its restriction.
-    /// </summary>
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public static double UpdateComponent(
-        double* z, double* jw, double mass, double* p, double* s, double* dv, double* r, double alpha, double beta, long k)
-    {
-        var zk = z[k];
-        var wk = (mass * zk) - jw[k];
-        jw[k] = 0.0;
-        var pk = zk + (beta * p[k]);
-        p[k] = pk;
-        var sk = wk + (beta * s[k]);
-        s[k] = sk;
-        dv[k] += alpha * pk;
-        var rk = r[k] - (alpha * sk);
-        r[k] = rk;
-        return rk;
-    }
-
-    /// <summary>
-    /// <see cref="UpdateComponent"/> on components [<paramref name="begin"/>, <paramref name="end"/>), with the mass of
-    /// each component's particle in <paramref name="masses"/> (3 values per particle): several components at a time with
-    /// System.Numerics.Vector where the runtime accelerates it, one at a time otherwise. Each component gets the same
-    /// multiplications, additions and subtractions in both, so the same bits.
-    /// </summary>
-    public static void UpdateRange(
-        double* z, double* jw, double* masses, double* p, double* s, double* dv, double* r, double alpha, double beta, long begin, long end)
-    {
-        var k = begin;
-        if (Vector.IsHardwareAccelerated)
-        {
-            var width = Vector<double>.Count;
-            var alphas = new Vector<double>(alpha);
-            var betas = new Vector<double>(beta);
-            for (; k + width <= end; k += width)
-            {
-                // Whole vectors inside [begin, end) only, which the caller keeps inside the arrays.
-                var zk = Load(z + k);
-                var wk = (Load(masses + k) * zk) - Load(jw + k);
-                Store(jw + k, Vector<double>.Zero);
-                var pk = zk + (betas * Load(p + k));
-                Store(p + k, pk);
-                var sk = wk + (betas * Load(s + k));
-                Store(s + k, sk);
-                Store(dv + k, Load(dv + k) + (alphas * pk));
-                Store(r + k, Load(r + k) - (alphas * sk));
-            }
-        }
-
-        for (; k < end; k++)
-        {
-            _ = UpdateComponent(z, jw, masses[k], p, s, dv, r, alpha, beta, k);
-        }
-    }
-
     /// <summary>The product's uniform tail at one particle, when there is one, as the force would have added it: jw[k] += c w[k].</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void AddTail(double* jw, double* w, bool hasTail, double tail)
@@ -736,12 +677,6 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
             jw[2] += tail * w[2];
         }
     }
-
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static Vector<double> Load(double* at) => *(Vector<double>*)at;
-
-    [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    private static void Store(double* at, Vector<double> value) => *(Vector<double>*)at = value;
 
     /// <summary>
     /// D_i^-1 = (M_i - J_ii)^-1 for particle i, by the cofactors of the symmetric block (its upper triangle:
