@@ -38,7 +38,9 @@ internal sealed unsafe class AggregationMultigrid
     private const int CoarsestNodes = 16;
     private const int MaxLevels = 12;
 
-    private readonly FinePasses _fine = new();
+    private readonly RestrictionPass _restriction = new();
+    private readonly UpdateAndRestrictionPass _updateAndRestriction = new();
+    private readonly PostSmoothAndProlongPass _postSmoothAndProlong = new();
 
     // The topology the hierarchy was built for.
     private int[] _first = Array.Empty<int>();
@@ -139,49 +141,74 @@ internal sealed unsafe class AggregationMultigrid
     }
 
     /// <summary>
-    /// The first half of z = D^-1 r + P B_c P^T r, fused with the iteration's update when <paramref name="update"/>:
-    /// p = z + beta p, s = w + beta s, dv += alpha p, r -= alpha s on the conjugate gradients' vectors, then B_1 = P^T r
-    /// (free particles only) and level 1's pre-smoothing from zero, X_1 = D_1^-1 B_1, in one pass over the aggregates'
-    /// members. Returns r . r after the update (0 without one), summed in chunk order.
+    /// The first half of z = D^-1 r + P B_c P^T r on its own (the solve's first preconditioning): B_1 = P^T r over the
+    /// free particles, and level 1's pre-smoothing from zero, X_1 = D_1^-1 B_1.
     /// </summary>
-    public double BeginApply(ConjugateGradientPasses cg, double alpha, double beta, bool update, IParallelRunner? runner)
+    public void Restrict(double[] residual, double[] inverseMasses, IParallelRunner? runner)
     {
-        var first = CheckBound(cg);
-        fixed (double* r = cg.R, z = cg.Z, dv = cg.Dv, p = cg.P, s = cg.S, jw = cg.JacobianProduct, inv = cg.Inverses, masses = cg.Masses, inverseMasses = cg.InverseMasses)
-        fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members, chunkMembers = _chunkMembers)
-        fixed (double* coarseB = first.B, coarseX = first.X, coarseInverse = first.Inverse, coordinateMasses = cg.CoordinateMasses)
+        var first = CheckBound(residual, inverseMasses);
+        fixed (double* r = residual, w = inverseMasses)
+        fixed (int* memberStart = _memberStart, members = _members)
+        fixed (double* coarseB = first.B, coarseX = first.X, coarseInverse = first.Inverse)
         {
-            _fine.Set(r, z, dv, p, s, jw, inv, masses, inverseMasses, aggregate, memberStart, members, first.Count);
-            _fine.SetCoarse(coarseB, coarseX, coarseInverse, null, smoothed: _levels.Length > 1);
-            _fine.SetRanges(chunkMembers, coordinateMasses);
-            _fine.Alpha = alpha;
-            _fine.Beta = beta;
-            _fine.Operation = update ? FinePasses.UpdateAndRestrict : FinePasses.Restrict;
-            Run(runner, _fine);
+            _restriction.Set(r, w, memberStart, members, first.Count, coarseB, coarseInverse, coarseX, smoothed: _levels.Length > 1);
+            Run(runner, _restriction);
         }
-
-        return update ? _fine.Sum() : 0.0;
     }
 
     /// <summary>
-    /// The second half: the V-cycle below level 1, then level 1's post-smoothing fused with the fine level's
-    /// z = D^-1 r + P X_1 (zero on pinned particles). Returns r . z, summed in chunk order.
+    /// One iteration's update of the conjugate gradients (<see cref="ConjugateGradientUpdate"/>: p, s, dv and r, and
+    /// jw cleared) fused with <see cref="Restrict"/> of the new r, in one pass over the aggregates' members: the
+    /// restriction reads r while the update has it in the cache, and an iteration hands off once less. Returns r . r
+    /// after the update, summed in chunk order.
     /// </summary>
-    public double FinishApply(ConjugateGradientPasses cg, IParallelRunner? runner)
+    public double UpdateAndRestrict(
+        double[] preconditioned, double[] jacobianProduct, double[] masses, double[] coordinateMasses, double[] direction,
+        double[] directionProduct, double[] solution, double[] residual, double[] inverseMasses, double alpha, double beta,
+        IParallelRunner? runner)
     {
-        var first = CheckBound(cg);
+        var first = CheckBound(residual, inverseMasses);
+        var n = 3L * _particles;
+        if (preconditioned.Length < n || jacobianProduct.Length < n || coordinateMasses.Length < n || direction.Length < n
+            || directionProduct.Length < n || solution.Length < n || masses.Length < _particles)
+        {
+            throw Shorter();
+        }
+
+        fixed (double* z = preconditioned, jw = jacobianProduct, m = masses, mc = coordinateMasses, p = direction)
+        fixed (double* s = directionProduct, dv = solution, r = residual, w = inverseMasses)
+        fixed (int* memberStart = _memberStart, members = _members, chunkMembers = _chunkMembers)
+        fixed (double* coarseB = first.B, coarseX = first.X, coarseInverse = first.Inverse)
+        {
+            _updateAndRestriction.Set(z, jw, m, mc, alpha, beta, p, s, dv, r, w);
+            _updateAndRestriction.SetAggregates(memberStart, members, chunkMembers, first.Count, coarseB, coarseInverse, coarseX, smoothed: _levels.Length > 1);
+            Run(runner, _updateAndRestriction);
+        }
+
+        return _updateAndRestriction.Sum();
+    }
+
+    /// <summary>
+    /// The second half of z = D^-1 r + P B_c P^T r: the V-cycle below level 1, then level 1's post-smoothing fused with
+    /// the fine level's z = D^-1 r + P X_1 (zero on pinned particles; D^-1 as the packed upper triangles of
+    /// <paramref name="inverses"/>). Returns r . z, summed in chunk order.
+    /// </summary>
+    public double CycleAndProlong(double[] residual, double[] inverses, double[] inverseMasses, double[] preconditioned, IParallelRunner? runner)
+    {
+        var first = CheckBound(residual, inverseMasses);
+        if (preconditioned.Length < 3L * _particles || inverses.Length < 6L * _particles)
+        {
+            throw Shorter();
+        }
+
         Cycle(0, runner);
         var smoothed = _levels.Length > 1;
-        fixed (double* r = cg.R, z = cg.Z, dv = cg.Dv, p = cg.P, s = cg.S, jw = cg.JacobianProduct, inv = cg.Inverses, masses = cg.Masses, inverseMasses = cg.InverseMasses)
-        fixed (int* aggregate = _aggregate, memberStart = _memberStart, members = _members)
-        fixed (double* coarseB = first.B, coarseX = first.X, coarseInverse = first.Inverse, smoothedX = first.Smoothed)
+        fixed (double* r = residual, inverse = inverses, w = inverseMasses, z = preconditioned)
+        fixed (int* memberStart = _memberStart, members = _members)
+        fixed (double* x = smoothed ? first.Smoothed : first.X)
         {
-            _fine.Set(r, z, dv, p, s, jw, inv, masses, inverseMasses, aggregate, memberStart, members, first.Count);
-            _fine.SetCoarse(coarseB, coarseX, coarseInverse, smoothed ? smoothedX : null, smoothed);
-            _fine.Operation = FinePasses.Prolong;
-            _fine.Level = smoothed ? first : null;
-            Run(runner, _fine);
-            _fine.Level = null;
+            _postSmoothAndProlong.Set(r, inverse, w, memberStart, members, first.Count, smoothed ? first : null, x, z);
+            Run(runner, _postSmoothAndProlong);
         }
 
         if (smoothed)
@@ -189,24 +216,23 @@ internal sealed unsafe class AggregationMultigrid
             first.SwapSmoothed();
         }
 
-        return _fine.Sum();
+        return _postSmoothAndProlong.Sum();
     }
 
-    /// <summary>The first level, after checking that the conjugate gradients' vectors cover the hierarchy's particles.</summary>
-    private Level CheckBound(ConjugateGradientPasses cg)
+    /// <summary>The first level, after checking that r and the inverse masses cover the hierarchy's particles.</summary>
+    private Level CheckBound(double[] residual, double[] inverseMasses)
     {
         // The fine passes run their pointers over the particles of the hierarchy: every array must cover them.
-        var n = 3L * _particles;
-        if (_levels.Length == 0 || cg.Particles != _particles || cg.InverseMasses.Length < _particles || cg.R.Length < n
-            || cg.Z.Length < n || cg.Dv.Length < n || cg.P.Length < n || cg.S.Length < n || cg.JacobianProduct.Length < n || cg.Masses.Length < _particles
-            || cg.Inverses.Length < 2 * n || cg.CoordinateMasses.Length < n)
+        if (_levels.Length == 0 || residual.Length < 3L * _particles || inverseMasses.Length < _particles)
         {
-            throw new InvalidOperationException(
-                $"The multigrid was set up for {_particles} particles; it was applied to {cg.Particles}, or to vectors shorter than theirs.");
+            throw Shorter();
         }
 
         return _levels[0];
     }
+
+    private InvalidOperationException Shorter() => new(
+        $"The multigrid was set up for {_particles} particles; it was applied before any coarse level was built, or to vectors shorter than theirs.");
 
     private static void Run(IParallelRunner? runner, IParallelWork work) => Chunk.RunAll(runner, work, Chunks);
 
@@ -217,7 +243,7 @@ internal sealed unsafe class AggregationMultigrid
     /// post-smoothing X += D^-1 (B - A X) in one pass, which adds each row's new X to its members on the level above
     /// (that level's prolongation: each row of the level above belongs to one aggregate, so the rows of a pass write
     /// disjoint members). Below the coarsest level's solve the prolongation is a loop of its own on the calling thread
-    /// (three additions per row). Level 1's post-smoothing is left to <see cref="FinishApply"/>, which fuses it with
+    /// (three additions per row). Level 1's post-smoothing is left to <see cref="CycleAndProlong"/>, which fuses it with
     /// the fine level.
     /// </summary>
     private void Cycle(int l, IParallelRunner? runner)
@@ -517,80 +543,131 @@ internal sealed unsafe class AggregationMultigrid
     }
 
     /// <summary>
-    /// The fine-level passes of <see cref="BeginApply"/> and <see cref="FinishApply"/>, in fixed chunks of level-1
-    /// aggregates, each visiting the members of its aggregates: restriction (after the iteration's update, or alone)
-    /// with level 1's pre-smoothing, and level 1's post-smoothing with the prolongation into z.
+    /// <see cref="Restrict"/> in fixed chunks of level-1 aggregates: B_I = sum of r_i over the free members of aggregate
+    /// I, in increasing member order, then X_I = D_I^-1 B_I when level 1 is smoothed (it is not the coarsest).
     /// </summary>
-    private sealed class FinePasses : IParallelWork
+    private sealed class RestrictionPass : IParallelWork
     {
-        public const int Restrict = 0;
-        public const int UpdateAndRestrict = 1;
-        public const int Prolong = 2;
-
-        private readonly double[] _partial = new double[Chunks];
         private double* _r;
-        private double* _z;
-        private double* _dv;
-        private double* _p;
-        private double* _s;
-        private double* _jw;
-        private double* _masses;
-        private double* _inverse;
         private double* _inverseMasses;
-        private double* _coarseB;
-        private double* _coarseX;
-        private double* _coarseInverse;
-        private double* _smoothedX;
-        private bool _smoothed;
-        private int* _aggregate;
         private int* _memberStart;
         private int* _members;
-        private int* _chunkMembers;
-        private double* _coordinateMasses;
         private int _aggregates;
-
-        public int Operation { get; set; }
-
-        public double Alpha { get; set; }
-
-        public double Beta { get; set; }
-
-        /// <summary>Level 1 when its post-smoothing is fused into the prolongation into z (it is not the coarsest), else null.</summary>
-        public Level? Level { get; set; }
+        private double* _coarseB;
+        private double* _coarseInverse;
+        private double* _coarseX;
+        private bool _smoothed;
 
         public void Set(
-            double* r, double* z, double* dv, double* p, double* s, double* jw, double* inverse, double* masses,
-            double* inverseMasses, int* aggregate, int* memberStart, int* members, int aggregates)
+            double* r, double* inverseMasses, int* memberStart, int* members, int aggregates, double* coarseB,
+            double* coarseInverse, double* coarseX, bool smoothed)
         {
             _r = r;
-            _z = z;
-            _dv = dv;
-            _p = p;
-            _s = s;
-            _jw = jw;
-            _masses = masses;
-            _inverse = inverse;
             _inverseMasses = inverseMasses;
-            _aggregate = aggregate;
             _memberStart = memberStart;
             _members = members;
             _aggregates = aggregates;
-        }
-
-        /// <summary>The chunks' contiguous member ranges (two values per chunk, -1 when not contiguous) and the masses per coordinate.</summary>
-        public void SetRanges(int* chunkMembers, double* coordinateMasses)
-        {
-            _chunkMembers = chunkMembers;
-            _coordinateMasses = coordinateMasses;
-        }
-
-        /// <summary>Level 1's B, X and inverted blocks; where its post-smoothing writes; whether it is smoothed (not the coarsest).</summary>
-        public void SetCoarse(double* coarseB, double* coarseX, double* coarseInverse, double* smoothedX, bool smoothed)
-        {
             _coarseB = coarseB;
-            _coarseX = coarseX;
             _coarseInverse = coarseInverse;
-            _smoothedX = smoothedX;
+            _coarseX = coarseX;
+            _smoothed = smoothed;
+        }
+
+        public void Execute(int chunk, int chunkCount)
+        {
+            var (begin, end) = Chunk.Range(chunk, chunkCount, _aggregates);
+            double* residual = _r, inverseMasses = _inverseMasses, coarseB = _coarseB, coarseX = _coarseX, coarseInverse = _coarseInverse;
+            int* memberStart = _memberStart, members = _members;
+            var smoothed = _smoothed;
+            for (var a = begin; a < end; a++)
+            {
+                double bx = 0.0, by = 0.0, bz = 0.0;
+                for (var m = memberStart[a]; m < memberStart[a + 1]; m++)
+                {
+                    var i = members[m];
+                    if (inverseMasses[i] == 0.0)
+                    {
+                        continue;
+                    }
+
+                    var ri = residual + (3L * i);
+                    bx += ri[0];
+                    by += ri[1];
+                    bz += ri[2];
+                }
+
+                var b = coarseB + (3L * a);
+                b[0] = bx;
+                b[1] = by;
+                b[2] = bz;
+                if (smoothed)
+                {
+                    Blocks3.Multiply(coarseInverse + (9L * a), b, coarseX + (3L * a));
+                }
+            }
+        }
+    }
+
+    /// <summary>
+    /// <see cref="UpdateAndRestrict"/> in the chunks of <see cref="RestrictionPass"/>: each chunk updates its aggregates'
+    /// members, then restricts their new r and sums their r . r.
+    /// </summary>
+    private sealed class UpdateAndRestrictionPass : IParallelWork
+    {
+        private readonly double[] _partial = new double[Chunks];
+        private double* _z;
+        private double* _jw;
+        private double* _masses;
+        private double* _coordinateMasses;
+        private double _alpha;
+        private double _beta;
+        private double* _p;
+        private double* _s;
+        private double* _dv;
+        private double* _r;
+        private double* _inverseMasses;
+        private int* _memberStart;
+        private int* _members;
+        private int* _chunkMembers;
+        private int _aggregates;
+        private double* _coarseB;
+        private double* _coarseInverse;
+        private double* _coarseX;
+        private bool _smoothed;
+
+        /// <summary>The update's vectors and scalars (masses once per particle and once per coordinate).</summary>
+        public void Set(
+            double* z, double* jw, double* masses, double* coordinateMasses, double alpha, double beta, double* p, double* s,
+            double* dv, double* r, double* inverseMasses)
+        {
+            _z = z;
+            _jw = jw;
+            _masses = masses;
+            _coordinateMasses = coordinateMasses;
+            _alpha = alpha;
+            _beta = beta;
+            _p = p;
+            _s = s;
+            _dv = dv;
+            _r = r;
+            _inverseMasses = inverseMasses;
+        }
+
+        /// <summary>
+        /// The aggregates (members, and per chunk [first, end) of its members when they are one range of particles,
+        /// else -1, -1) and level 1's B, inverted blocks and X.
+        /// </summary>
+        public void SetAggregates(
+            int* memberStart, int* members, int* chunkMembers, int aggregates, double* coarseB, double* coarseInverse,
+            double* coarseX, bool smoothed)
+        {
+            _memberStart = memberStart;
+            _members = members;
+            _chunkMembers = chunkMembers;
+            _aggregates = aggregates;
+            _coarseB = coarseB;
+            _coarseInverse = coarseInverse;
+            _coarseX = coarseX;
             _smoothed = smoothed;
         }
 
@@ -599,41 +676,30 @@ internal sealed unsafe class AggregationMultigrid
         public void Execute(int chunk, int chunkCount)
         {
             var (begin, end) = Chunk.Range(chunk, chunkCount, _aggregates);
-            if (Operation == Prolong)
-            {
-                // X_1 of the chunk's aggregates after their post-smoothing (or as the coarsest solve left it), then
-                // z_i = D_i^-1 r_i + X_1[a] on each aggregate's free members, 0 on pinned ones; the chunk's share of r . z.
-                Level?.PostSmoothRows(begin, end, _smoothedX);
-                _partial[chunk] = ProlongRows(begin, end, Level is null ? _coarseX : _smoothedX);
-                return;
-            }
-
-            var update = Operation == UpdateAndRestrict;
-            if (update && _chunkMembers[2 * chunk] >= 0)
+            if (_chunkMembers[2 * chunk] >= 0)
             {
                 // The chunk's members are one range of particles: the update over its coordinates first, with SIMD
                 // where the runtime has it (the same operations per component), then the restriction below reads the
                 // new r and sums r . r in the same member order as the update per member does.
                 ConjugateGradientUpdate.Range(
-                    _z, _jw, _coordinateMasses, _p, _s, _dv, _r, Alpha, Beta, 3L * _chunkMembers[2 * chunk], 3L * _chunkMembers[(2 * chunk) + 1]);
+                    _z, _jw, _coordinateMasses, _p, _s, _dv, _r, _alpha, _beta, 3L * _chunkMembers[2 * chunk], 3L * _chunkMembers[(2 * chunk) + 1]);
                 _partial[chunk] = RestrictUpdated(begin, end);
                 return;
             }
 
-            _partial[chunk] = RestrictRows(begin, end, update);
+            _partial[chunk] = UpdateAndRestrictRows(begin, end);
         }
 
         /// <summary>
-        /// B_I = sum of r_i over the free members of aggregates [begin, end), in increasing member order (after each
-        /// member's update when <paramref name="update"/>), then X_I = D_I^-1 B_I; returns the chunk's r . r (0 without
-        /// the update).
+        /// Each member of aggregates [begin, end) updated in increasing member order, its r added to B_I when it is free,
+        /// then X_I = D_I^-1 B_I; returns the chunk's r . r.
         /// </summary>
-        private double RestrictRows(int begin, int end, bool update)
+        private double UpdateAndRestrictRows(int begin, int end)
         {
             double* residual = _r, z = _z, jw = _jw, p = _p, s = _s, dv = _dv, masses = _masses, inverseMasses = _inverseMasses;
             double* coarseB = _coarseB, coarseX = _coarseX, coarseInverse = _coarseInverse;
             int* memberStart = _memberStart, members = _members;
-            double alpha = Alpha, beta = Beta;
+            double alpha = _alpha, beta = _beta;
             var smoothed = _smoothed;
             var sum = 0.0;
             for (var a = begin; a < end; a++)
@@ -643,18 +709,14 @@ internal sealed unsafe class AggregationMultigrid
                 {
                     var i = members[m];
                     var ri = residual + (3L * i);
-                    if (update)
-                    {
-                        var o = 3L * i;
-                        var mass = masses[i];
-                        var r0 = ConjugateGradientUpdate.Component(z, jw, mass, p, s, dv, residual, alpha, beta, o);
-                        var r1 = ConjugateGradientUpdate.Component(z, jw, mass, p, s, dv, residual, alpha, beta, o + 1);
-                        var r2 = ConjugateGradientUpdate.Component(z, jw, mass, p, s, dv, residual, alpha, beta, o + 2);
-                        sum += r0 * r0;
-                        sum += r1 * r1;
-                        sum += r2 * r2;
-                    }
-
+                    var o = 3L * i;
+                    var mass = masses[i];
+                    var r0 = ConjugateGradientUpdate.Component(z, jw, mass, p, s, dv, residual, alpha, beta, o);
+                    var r1 = ConjugateGradientUpdate.Component(z, jw, mass, p, s, dv, residual, alpha, beta, o + 1);
+                    var r2 = ConjugateGradientUpdate.Component(z, jw, mass, p, s, dv, residual, alpha, beta, o + 2);
+                    sum += r0 * r0;
+                    sum += r1 * r1;
+                    sum += r2 * r2;
                     if (inverseMasses[i] == 0.0)
                     {
                         continue;
@@ -721,15 +783,62 @@ internal sealed unsafe class AggregationMultigrid
 
             return sum;
         }
+    }
+
+    /// <summary>
+    /// The end of <see cref="CycleAndProlong"/> in the chunks of <see cref="RestrictionPass"/>: level 1's post-smoothing
+    /// of the chunk's aggregates (when level 1 is not the coarsest), then z_i = D_i^-1 r_i + X_1[a] on their free members
+    /// and 0 on pinned ones, and the chunk's r . z.
+    /// </summary>
+    private sealed class PostSmoothAndProlongPass : IParallelWork
+    {
+        private readonly double[] _partial = new double[Chunks];
+        private double* _r;
+        private double* _inverses;
+        private double* _inverseMasses;
+        private int* _memberStart;
+        private int* _members;
+        private int _aggregates;
+        private Level? _level;
+        private double* _coarseX;
+        private double* _z;
 
         /// <summary>
-        /// z_i = D_i^-1 r_i + X[a] on the free members of aggregates [begin, end) (X: level 1's values in
-        /// <paramref name="coarse"/>), 0 on pinned ones; returns their r . z. The addresses in locals: read from the
-        /// fields, they were loaded again after every store to z.
+        /// <paramref name="level"/>: level 1 when its post-smoothing is fused here (it writes the new X_1 into
+        /// <paramref name="coarseX"/>, its smoothed buffer), null when X_1 is final (the coarsest solve's, in
+        /// <paramref name="coarseX"/>).
         /// </summary>
-        private double ProlongRows(int begin, int end, double* coarse)
+        public void Set(
+            double* r, double* inverses, double* inverseMasses, int* memberStart, int* members, int aggregates, Level? level,
+            double* coarseX, double* z)
         {
-            double* residual = _r, preconditioned = _z, inverses = _inverse, inverseMasses = _inverseMasses;
+            _r = r;
+            _inverses = inverses;
+            _inverseMasses = inverseMasses;
+            _memberStart = memberStart;
+            _members = members;
+            _aggregates = aggregates;
+            _level = level;
+            _coarseX = coarseX;
+            _z = z;
+        }
+
+        public double Sum() => Chunk.Sum(_partial);
+
+        public void Execute(int chunk, int chunkCount)
+        {
+            var (begin, end) = Chunk.Range(chunk, chunkCount, _aggregates);
+            _level?.PostSmoothRows(begin, end, _coarseX);
+            _partial[chunk] = ProlongRows(begin, end);
+        }
+
+        /// <summary>
+        /// z_i = D_i^-1 r_i + X[a] on the free members of aggregates [begin, end), 0 on pinned ones; returns their r . z.
+        /// The addresses in locals: read from the fields, they were loaded again after every store to z.
+        /// </summary>
+        private double ProlongRows(int begin, int end)
+        {
+            double* residual = _r, preconditioned = _z, inverses = _inverses, inverseMasses = _inverseMasses, coarse = _coarseX;
             int* memberStart = _memberStart, members = _members;
             var sum = 0.0;
             for (var a = begin; a < end; a++)

@@ -326,6 +326,25 @@ internal sealed unsafe class ConjugateGradientPasses : IParallelWork
     public double Jacobi() => Run(JacobiPass);
 
     /// <summary>
+    /// The multigrid's first half on r, B_1 = P^T r with level 1's pre-smoothing (before the first iteration; see
+    /// <see cref="AggregationMultigrid.Restrict"/>).
+    /// </summary>
+    public void Restrict(AggregationMultigrid multigrid) => multigrid.Restrict(R, _inverseMasses, _runner);
+
+    /// <summary>
+    /// One step of the iteration fused with the multigrid's first half on the new r
+    /// (<see cref="AggregationMultigrid.UpdateAndRestrict"/>); returns r . r.
+    /// </summary>
+    public double UpdateAndRestrict(AggregationMultigrid multigrid, double alpha, double beta) =>
+        multigrid.UpdateAndRestrict(Z, JacobianProduct, _masses, _coordinateMasses, P, S, Dv, R, _inverseMasses, alpha, beta, _runner);
+
+    /// <summary>
+    /// The multigrid's second half, z = D^-1 r + P X_1 after the cycle (<see cref="AggregationMultigrid.CycleAndProlong"/>);
+    /// returns r . z.
+    /// </summary>
+    public double CycleAndProlong(AggregationMultigrid multigrid) => multigrid.CycleAndProlong(R, _inverses, _inverseMasses, Z, _runner);
+
+    /// <summary>
     /// Writes D_i^-1 = (M_i - J_ii)^-1 into <see cref="Inverses"/>; a pinned particle gets the zero block (filtered), a
     /// degenerate block plain Jacobi on the mass, 1 / m_i. <see cref="Blocks"/> keeps J_ii.
     /// </summary>

@@ -295,22 +295,20 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         var target = _tolerance * rhsNorm;
         if (residualNorm > target && _maxIterations > 0)
         {
-            var gamma = Precondition(passes, ref multigrid, runner);
+            var gamma = Precondition(passes, ref multigrid);
             var delta = ApplySystemMatrix(system, tail, passes, time, end);
             var alpha = gamma / delta;
             var beta = 0.0;
             while (delta > 0.0)
             {
-                residualNorm = Math.Sqrt(multigrid
-                    ? _multigrid!.BeginApply(passes, alpha, beta, update: true, runner)
-                    : passes.Update(alpha, beta));
+                residualNorm = Math.Sqrt(multigrid ? passes.UpdateAndRestrict(_multigrid!, alpha, beta) : passes.Update(alpha, beta));
                 iterations++;
                 if (residualNorm <= target || iterations >= _maxIterations || !DoubleChecks.IsFinite(residualNorm))
                 {
                     break;
                 }
 
-                var gammaNext = multigrid ? _multigrid!.FinishApply(passes, runner) : passes.LastJacobiProduct;
+                var gammaNext = multigrid ? passes.CycleAndProlong(_multigrid!) : passes.LastJacobiProduct;
                 var restart = false;
                 if (multigrid && !(gammaNext > 0.0))
                 {
@@ -419,12 +417,12 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     /// z = P r with the multigrid, or block Jacobi (also when the multigrid is not positive along r: a force whose
     /// couplings are not of pair form); returns r . z, summed in chunk order.
     /// </summary>
-    private double Precondition(ConjugateGradientPasses passes, ref bool multigrid, IParallelRunner? runner)
+    private double Precondition(ConjugateGradientPasses passes, ref bool multigrid)
     {
         if (multigrid)
         {
-            _ = _multigrid!.BeginApply(passes, 0.0, 0.0, update: false, runner);
-            var rz = _multigrid.FinishApply(passes, runner);
+            passes.Restrict(_multigrid!);
+            var rz = passes.CycleAndProlong(_multigrid!);
             if (rz > 0.0)
             {
                 return rz;
