@@ -1,5 +1,6 @@
 using System;
 using System.Runtime.CompilerServices;
+using ParticlePhysics.Integrators.Multigrid;
 using ParticlePhysics.Numerics;
 using ParticlePhysics.Parallel;
 

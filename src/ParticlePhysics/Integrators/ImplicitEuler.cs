@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Integrators.Multigrid;
 using ParticlePhysics.Numerics;
 using ParticlePhysics.Parallel;
 

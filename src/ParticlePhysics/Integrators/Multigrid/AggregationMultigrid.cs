@@ -5,7 +5,7 @@ using System.Runtime.CompilerServices;
 using ParticlePhysics.Numerics;
 using ParticlePhysics.Parallel;
 
-namespace ParticlePhysics.Integrators;
+namespace ParticlePhysics.Integrators.Multigrid;
 
 /// <summary>
 /// The preconditioner of implicit Euler's conjugate gradients on large systems: a two-level additive method whose
