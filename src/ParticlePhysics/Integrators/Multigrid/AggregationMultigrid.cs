@@ -490,14 +490,14 @@ internal sealed unsafe class AggregationMultigrid
         _couplings = count;
         _particles = particles;
 
-        var fine = Graph.FromPairs(particles, _first, _second, count);
+        var fine = CouplingGraph.FromPairs(particles, _first, _second, count);
         if (particles <= CoarsestNodes || fine.EdgeCount == 0)
         {
             return;
         }
 
         var levels = new List<Level>();
-        var map = Graph.PairTwice(fine, out var coarseCount);
+        var map = CouplingGraph.PairTwice(fine, out var coarseCount);
         var graph = fine.Contract(map, coarseCount);
         if (coarseCount > 0.9 * particles)
         {
@@ -505,7 +505,7 @@ internal sealed unsafe class AggregationMultigrid
         }
 
         _aggregate = map;
-        (_memberStart, _members) = Graph.Members(map, coarseCount);
+        (_memberStart, _members) = CouplingGraph.Members(map, coarseCount);
         _chunkMembers = ContiguousChunkMembers(_memberStart, _members, coarseCount);
         var level = new Level(graph);
         _forwardTarget = new int[count];
@@ -526,7 +526,7 @@ internal sealed unsafe class AggregationMultigrid
         levels.Add(level);
         while (level.Count > CoarsestNodes && levels.Count < MaxLevels)
         {
-            var nextMap = Graph.PairTwice(graph, out var nextCount);
+            var nextMap = CouplingGraph.PairTwice(graph, out var nextCount);
             if (nextCount > 0.9 * level.Count)
             {
                 break;
@@ -869,172 +869,6 @@ internal sealed unsafe class AggregationMultigrid
         }
     }
 
-    /// <summary>An undirected graph with weighted edges, rows sorted by column: the couplings of one level.</summary>
-    private sealed class Graph
-    {
-        public Graph(int count, int[] rowStart, int[] column, int[] weight)
-        {
-            Count = count;
-            RowStart = rowStart;
-            Column = column;
-            Weight = weight;
-        }
-
-        public int Count { get; }
-
-        public int[] RowStart { get; }
-
-        public int[] Column { get; }
-
-        public int[] Weight { get; }
-
-        public int EdgeCount => Column.Length;
-
-        /// <summary>The graph of the pairs (both directions, self-pairs dropped), a repeated pair weighing its multiplicity.</summary>
-        public static Graph FromPairs(int count, int[] first, int[] second, int pairs)
-        {
-            var rows = new List<int>[count];
-            for (var e = 0; e < pairs; e++)
-            {
-                if (first[e] != second[e])
-                {
-                    (rows[first[e]] ??= new List<int>()).Add(second[e]);
-                    (rows[second[e]] ??= new List<int>()).Add(first[e]);
-                }
-            }
-
-            return FromRows(count, rows, null);
-        }
-
-        /// <summary>The graph of the groups of <paramref name="map"/>: weights summed, edges inside a group dropped.</summary>
-        public Graph Contract(int[] map, int groups)
-        {
-            var rows = new List<int>[groups];
-            var weights = new List<int>[groups];
-            for (var i = 0; i < Count; i++)
-            {
-                for (var k = RowStart[i]; k < RowStart[i + 1]; k++)
-                {
-                    int a = map[i], b = map[Column[k]];
-                    if (a != b)
-                    {
-                        (rows[a] ??= new List<int>()).Add(b);
-                        (weights[a] ??= new List<int>()).Add(Weight[k]);
-                    }
-                }
-            }
-
-            return FromRows(groups, rows, weights);
-        }
-
-        /// <summary>Two pairwise matchings in a row: aggregates of up to four.</summary>
-        public static int[] PairTwice(Graph graph, out int count)
-        {
-            var first = graph.Match(out var firstCount);
-            var second = graph.Contract(first, firstCount).Match(out count);
-            var map = new int[graph.Count];
-            for (var i = 0; i < map.Length; i++)
-            {
-                map[i] = second[first[i]];
-            }
-
-            return map;
-        }
-
-        /// <summary>The members of each group in increasing order (compressed rows).</summary>
-        public static (int[] Start, int[] Members) Members(int[] map, int groups)
-        {
-            var start = new int[groups + 1];
-            foreach (var g in map)
-            {
-                start[g + 1]++;
-            }
-
-            for (var g = 0; g < groups; g++)
-            {
-                start[g + 1] += start[g];
-            }
-
-            var members = new int[map.Length];
-            var fill = (int[])start.Clone();
-            for (var i = 0; i < map.Length; i++)
-            {
-                members[fill[map[i]]++] = i;
-            }
-
-            return (start, members);
-        }
-
-        /// <summary>
-        /// Greedy matching in increasing node order: each unmatched node pairs with its unmatched neighbour of largest
-        /// weight (the lowest-numbered on a tie), or stays alone. Returns each node's group.
-        /// </summary>
-        private int[] Match(out int groups)
-        {
-            var group = new int[Count];
-            Array.Fill(group, -1);
-            groups = 0;
-            for (var i = 0; i < Count; i++)
-            {
-                if (group[i] >= 0)
-                {
-                    continue;
-                }
-
-                int best = -1, bestWeight = 0;
-                for (var k = RowStart[i]; k < RowStart[i + 1]; k++)
-                {
-                    var j = Column[k];
-                    if (group[j] < 0 && Weight[k] > bestWeight)
-                    {
-                        best = j;
-                        bestWeight = Weight[k];
-                    }
-                }
-
-                group[i] = groups;
-                if (best >= 0)
-                {
-                    group[best] = groups;
-                }
-
-                groups++;
-            }
-
-            return group;
-        }
-
-        private static Graph FromRows(int count, List<int>[] rows, List<int>[]? weights)
-        {
-            var rowStart = new int[count + 1];
-            var columns = new List<int>();
-            var weightList = new List<int>();
-            var merged = new SortedDictionary<int, int>();
-            for (var i = 0; i < count; i++)
-            {
-                merged.Clear();
-                if (rows[i] is { } row)
-                {
-                    for (var k = 0; k < row.Count; k++)
-                    {
-                        merged.TryGetValue(row[k], out var w);
-                        merged[row[k]] = w + (weights is null ? 1 : weights[i][k]);
-                    }
-                }
-
-                foreach (var pair in merged)
-                {
-                    columns.Add(pair.Key);
-                    weightList.Add(pair.Value);
-                }
-
-                rowStart[i + 1] = columns.Count;
-            }
-
-            return new Graph(count, rowStart, columns.ToArray(), weightList.ToArray());
-        }
-    }
-
     /// <summary>
     /// One coarse level: diagonal and off-diagonal 3 x 3 blocks (compressed rows with both directions of every pair in
     /// its sparsity, columns increasing; each pair's block stored once), the inverted diagonal, the right-hand side B
@@ -1092,7 +926,7 @@ internal sealed unsafe class AggregationMultigrid
         private double[]? _dense;
         private bool _denseValid;
 
-        public Level(Graph graph)
+        public Level(CouplingGraph graph)
         {
             Count = graph.Count;
             _rowStart = graph.RowStart;
@@ -1211,7 +1045,7 @@ internal sealed unsafe class AggregationMultigrid
         public void LinkTo(Level next, int[] map)
         {
             _nextAggregate = map;
-            (_nextMemberStart, _nextMembers) = Graph.Members(map, next.Count);
+            (_nextMemberStart, _nextMembers) = CouplingGraph.Members(map, next.Count);
             _nextTarget = new int[_column.Length];
             for (var i = 0; i < Count; i++)
             {
