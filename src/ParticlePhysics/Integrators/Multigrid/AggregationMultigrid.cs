@@ -42,6 +42,11 @@ internal sealed unsafe class AggregationMultigrid
     private readonly RestrictionPass _restriction = new();
     private readonly UpdateAndRestrictionPass _updateAndRestriction = new();
     private readonly PostSmoothAndProlongPass _postSmoothAndProlong = new();
+    private readonly BlockInversionPass _inversion = new();
+    private readonly CoarseGalerkinPass _galerkin = new();
+    private readonly ResidualRestrictionPass _residualRestriction = new();
+    private readonly PostSmoothingPass _postSmoothing = new();
+    private readonly CoarsestSolver _coarsest = new();
 
     // The topology the hierarchy was built for.
     private int[] _first = Array.Empty<int>();
@@ -129,14 +134,16 @@ internal sealed unsafe class AggregationMultigrid
         for (var l = 0; l < _levels.Length; l++)
         {
             var level = _levels[l];
-            level.Invert(runner);
+            _inversion.Set(level);
+            Run(level.RunnerFor(runner), _inversion);
             if (l + 1 < _levels.Length)
             {
-                level.GalerkinInto(_levels[l + 1], runner);
+                _galerkin.Set(level, _levels[l + 1]);
+                Run(level.RunnerFor(runner), _galerkin);
             }
             else
             {
-                level.FactorDense();
+                _coarsest.Factor(level);
             }
         }
     }
@@ -252,12 +259,13 @@ internal sealed unsafe class AggregationMultigrid
         var level = _levels[l];
         if (l == _levels.Length - 1)
         {
-            level.SolveCoarsest();
+            _coarsest.Solve(level);
             return;
         }
 
         var next = _levels[l + 1];
-        level.RestrictResidual(next, smoothNext: l + 2 < _levels.Length, runner);
+        _residualRestriction.Set(level, next, smoothNext: l + 2 < _levels.Length);
+        Run(level.RunnerFor(runner), _residualRestriction);
         Cycle(l + 1, runner);
         if (l + 1 == _levels.Length - 1)
         {
@@ -266,7 +274,9 @@ internal sealed unsafe class AggregationMultigrid
 
         if (l > 0)
         {
-            level.PostSmooth(next, _levels[l - 1], runner);
+            _postSmoothing.Set(level, _levels[l - 1]);
+            Run(level.RunnerFor(runner), _postSmoothing);
+            level.SwapSmoothed();
         }
     }
 
