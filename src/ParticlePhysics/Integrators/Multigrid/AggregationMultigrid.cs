@@ -57,21 +57,12 @@ internal sealed unsafe class AggregationMultigrid
     private long? _revision; // the system's coupling revision when the couplings were last seen, if it has one
     private int _particles = -1;
 
-    // Fine level: the aggregate of each particle, its members, and the block
-    // of level 1 that each fine coupling's A_ij (forward) and A_ji (backward) land in (-1: none, or not the direction stored).
-    private readonly AssemblyPass _assembly = new();
-    // The level-1 targets of each part of the assembly, forward then backward: for one part, for the runner's parts,
-    // and the set in use.
-    private int[][] _whole = Array.Empty<int[]>();
-    private int[][] _parted = Array.Empty<int[]>();
-    private int[][] _targets = Array.Empty<int[]>();
-    private bool[] _filteredFor = Array.Empty<bool>(); // the pinned particles the filtered targets were made for
+    // Fine level: the aggregate of each particle and the members of each aggregate.
+    private readonly FineGalerkinAssembly _fineAssembly = new();
     private int[] _aggregate = Array.Empty<int>();
     private int[] _memberStart = Array.Empty<int>();
     private int[] _members = Array.Empty<int>();
     private int[] _chunkMembers = Array.Empty<int>(); // per fine chunk: [first, end) of its members when contiguous, else -1, -1
-    private int[] _forwardTarget = Array.Empty<int>();
-    private int[] _backwardTarget = Array.Empty<int>();
     private CoarseLevel[] _levels = Array.Empty<CoarseLevel>();
 
     /// <summary>True when there is a coarse level (else the preconditioner is block Jacobi alone).</summary>
@@ -130,7 +121,7 @@ internal sealed unsafe class AggregationMultigrid
             return;
         }
 
-        GalerkinFromFine(system, fineDiagonal, masses, inverseMasses, count, runner);
+        _fineAssembly.Assemble(system, fineDiagonal, masses, inverseMasses, count, _levels[0], _memberStart, _members, runner);
         for (var l = 0; l < _levels.Length; l++)
         {
             var level = _levels[l];
@@ -294,160 +285,6 @@ internal sealed unsafe class AggregationMultigrid
     }
 
     /// <summary>
-    /// The level-1 operator: the fine diagonal blocks M - J_ii and the coupling blocks -J_ij summed per aggregate.
-    /// The forces add their J_ij straight into the aggregates' blocks (<see cref="ILinearizableSystem.AddCouplingBlocks"/>),
-    /// so a block holds -A_1 until its sign is turned at the end. On a runner, each part assembles the block rows of a
-    /// range of aggregates, with the targets outside it masked: every block still gets its terms in the same order.
-    /// </summary>
-    private void GalerkinFromFine(
-        ILinearizableSystem system, double[] fineDiagonal, Span<double> masses, Span<double> inverseMasses, int count, IParallelRunner? runner)
-    {
-        var parts = runner is { MaxParallelism: > 1 } ? runner.MaxParallelism : 1;
-        FilterTargets(inverseMasses, count, parts);
-        fixed (double* fine = fineDiagonal, m = masses, w = inverseMasses)
-        {
-            _assembly.Set(this, system, fine, m, w, count);
-            if (parts > 1)
-            {
-                runner!.Run(_assembly, parts);
-            }
-            else
-            {
-                _assembly.Execute(0, 1);
-            }
-        }
-    }
-
-    /// <summary>
-    /// The level-1 targets of the couplings for each of <paramref name="parts"/> ranges of aggregates, without
-    /// couplings that touch a pinned particle (rebuilt when pinning, the topology or the parts change).
-    /// </summary>
-    private void FilterTargets(Span<double> inverseMasses, int count, int parts)
-    {
-        var same = _filteredFor.Length == _particles;
-        for (var i = 0; same && i < _particles; i++)
-        {
-            same = _filteredFor[i] == (inverseMasses[i] == 0.0);
-        }
-
-        if (!same)
-        {
-            _filteredFor = new bool[_particles];
-            for (var i = 0; i < _particles; i++)
-            {
-                _filteredFor[i] = inverseMasses[i] == 0.0;
-            }
-
-            _whole = Array.Empty<int[]>();
-            _parted = Array.Empty<int[]>();
-        }
-
-        // One set of targets for the calling thread alone and one for the runner's parts, so that a host switching
-        // between them does not rebuild (and allocate) at every switch.
-        ref var targets = ref parts == 1 ? ref _whole : ref _parted;
-        if (targets.Length != 2 * parts)
-        {
-            targets = FilteredTargets(count, parts);
-        }
-
-        _targets = targets;
-    }
-
-    private int[][] FilteredTargets(int count, int parts)
-    {
-        var level = _levels[0];
-        var targets = new int[2 * parts][];
-        for (var part = 0; part < parts; part++)
-        {
-            var (begin, end) = Chunk.Range(part, parts, level.Count);
-            var forward = targets[2 * part] = new int[count];
-            var backward = targets[(2 * part) + 1] = new int[count];
-            for (var e = 0; e < count; e++)
-            {
-                // (Both targets -1: a coupling of a particle with itself; one: the block stored is the other direction's.)
-                var skip = (_forwardTarget[e] < 0 && _backwardTarget[e] < 0) || _filteredFor[_first[e]] || _filteredFor[_second[e]];
-                forward[e] = !skip && level.InRows(_forwardTarget[e], begin, end) ? _forwardTarget[e] : -1;
-                backward[e] = !skip && level.InRows(_backwardTarget[e], begin, end) ? _backwardTarget[e] : -1;
-            }
-        }
-
-        return targets;
-    }
-
-    /// <summary>One part of the level-1 assembly: the block rows of a range of aggregates.</summary>
-    private sealed class AssemblyPass : IParallelWork
-    {
-        private AggregationMultigrid? _owner;
-        private ILinearizableSystem? _system;
-        private double* _fine;
-        private double* _masses;
-        private double* _inverseMasses;
-        private int _count;
-
-        public void Set(AggregationMultigrid owner, ILinearizableSystem system, double* fine, double* masses, double* inverseMasses, int count)
-        {
-            _owner = owner;
-            _system = system;
-            _fine = fine;
-            _masses = masses;
-            _inverseMasses = inverseMasses;
-            _count = count;
-        }
-
-        public void Execute(int chunk, int chunkCount)
-        {
-            var owner = _owner!;
-            var level = owner._levels[0];
-            var (begin, end) = Chunk.Range(chunk, chunkCount, level.Count);
-            var (first, last) = level.BlockRange(begin, end);
-            Array.Clear(level.Values, 9 * first, 9 * (last - first)); // the diagonal blocks of the rows
-            var (offFirst, offLast) = level.OffDiagonalRange(begin, end);
-            Array.Clear(level.Values, 9 * offFirst, 9 * (offLast - offFirst));
-            fixed (double* values = level.Values)
-            fixed (int* memberStart = owner._memberStart, members = owner._members)
-            {
-                for (var a = begin; a < end; a++)
-                {
-                    var d = values + (9L * a);
-                    for (var k = memberStart[a]; k < memberStart[a + 1]; k++)
-                    {
-                        var i = members[k];
-                        if (_inverseMasses[i] == 0.0)
-                        {
-                            continue;
-                        }
-
-                        var f = _fine + (9L * i);
-                        var mi = _masses[i];
-                        d[0] += f[0] - mi;
-                        d[1] += f[1];
-                        d[2] += f[2];
-                        d[3] += f[3];
-                        d[4] += f[4] - mi;
-                        d[5] += f[5];
-                        d[6] += f[6];
-                        d[7] += f[7];
-                        d[8] += f[8] - mi;
-                    }
-                }
-            }
-
-            _system!.AddCouplingBlocks(
-                level.Values, owner._targets[2 * chunk].AsSpan(0, _count), owner._targets[(2 * chunk) + 1].AsSpan(0, _count));
-            var v = level.Values;
-            for (var k = 9 * first; k < 9 * last; k++)
-            {
-                v[k] = -v[k];
-            }
-
-            for (var k = 9 * offFirst; k < 9 * offLast; k++)
-            {
-                v[k] = -v[k];
-            }
-        }
-    }
-
-    /// <summary>
     /// For each of the <see cref="Chunks"/> chunks of aggregates that the fine passes run in, the particles its
     /// aggregates' members cover, [first, end), when they are exactly that range of indices (each particle in one
     /// aggregate, so the chunks' ranges are disjoint), else (-1, -1): two values per chunk. A cloth's aggregates are
@@ -483,7 +320,6 @@ internal sealed unsafe class AggregationMultigrid
         _checkSecond = new int[count];
         system.WriteCouplings(_first, _second);
         _levels = Array.Empty<CoarseLevel>();
-        _filteredFor = Array.Empty<bool>();
 
         // Marked as built only once the couplings are checked: a hierarchy that failed here is built (and fails) again
         // at the next step, instead of that step finding the same couplings and falling back to block Jacobi silently.
@@ -519,21 +355,7 @@ internal sealed unsafe class AggregationMultigrid
         (_memberStart, _members) = CouplingGraph.Members(map, coarseCount);
         _chunkMembers = ContiguousChunkMembers(_memberStart, _members, coarseCount);
         var level = new CoarseLevel(graph);
-        _forwardTarget = new int[count];
-        _backwardTarget = new int[count];
-        for (var e = 0; e < count; e++)
-        {
-            int i = _first[e], j = _second[e];
-            if (i == j)
-            {
-                _forwardTarget[e] = _backwardTarget[e] = -1;
-                continue;
-            }
-
-            _forwardTarget[e] = level.Target(map[i], map[j]);
-            _backwardTarget[e] = level.Target(map[j], map[i]);
-        }
-
+        _fineAssembly.Link(_first, _second, count, map, level);
         levels.Add(level);
         while (level.Count > CoarsestNodes && levels.Count < MaxLevels)
         {
