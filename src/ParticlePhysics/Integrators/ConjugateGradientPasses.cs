@@ -10,9 +10,9 @@ namespace ParticlePhysics.Integrators;
 /// The vectors of implicit Euler's conjugate gradients (Chronopoulos and Gear's form, see <see cref="ImplicitEuler"/>)
 /// and the passes over them, each a class of its own set with exactly the vectors it reads and writes, in a fixed
 /// number of chunks of particles whose partial sums are added in chunk order: the same bits whether the chunks run on
-/// one thread or on a runner's several. The passes are grouped by when they run: before the iterations
-/// (ConjugateGradientPasses.Start.cs), in each iteration (ConjugateGradientPasses.Iteration.cs) and after them
-/// (ConjugateGradientPasses.End.cs).
+/// one thread or on a runner's several. The passes are grouped by when they run: the warm start
+/// (ConjugateGradientPasses.WarmStart.cs), the rest of what comes before the iterations (.Start.cs), each iteration
+/// (.Iteration.cs) and what comes after them (.End.cs).
 /// </summary>
 /// <remarks>
 /// The vectors, 3 values per particle: b the right-hand side, dv the solution, r = b - A dv the residual, z = P r the
