@@ -240,13 +240,11 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         // multigrid, with the products q_a ~ A u_a that the last solves left behind (each one's b - r, with its own
         // step's matrix: no product is spent here), the start sum c_a u_a in the span of the last four that satisfies
         // the Galerkin conditions u_j . (b - sum c_a q_a) = 0 (one pass for the sums, a 4 x 4 solve; fewer steps when
-        // the system is singular, the extrapolation when none is left). Measured (docs/benchmarks.md, "The warm
-        // start from the last four steps"): on the 64 x 64 cloth's first second, 7.10 iterations per frame at 1e-3
-        // with the last two steps (7.55 with the extrapolation), 6.83 with four, and 20.98 and 17.10 at 1e-6; over ten
-        // cases 6038 iterations with two, 5433 with four. Under block Jacobi the plane of two took 15 % more (the
-        // energy it removes is in the stiff components, which block Jacobi damps anyway), hence not there.
-        // Pinned components are always 0. The committed warm start is only read here: a step that fails leaves it as
-        // it was (CommitStep moves dv and its product in).
+        // the system is singular, the extrapolation when none is left): it removes the error in the span of those
+        // steps, where the smooth part of the motion lies. Not under block Jacobi: the error it removes there is in the
+        // stiff components, which block Jacobi damps anyway (docs/benchmarks.md, "The warm start" and "The warm start
+        // from the last four steps"). Pinned components are always 0. The committed warm start is only read here: a
+        // step that fails leaves it as it was (CommitStep moves dv and its product in).
         var known = WarmStart && _history.Length == n ? _history.Known : 0;
         var knownProducts = known > 0 ? Math.Min(_history.KnownProducts, known) : 0;
         // The start from the products is the multigrid's, so only its steps keep their products; taken before the

@@ -51,7 +51,7 @@ internal sealed unsafe class PostSmoothAndProlongPass : IParallelWork
 
     /// <summary>
     /// z_i = D_i^-1 r_i + X[a] on the free members of aggregates [begin, end), 0 on pinned ones; returns their r . z.
-    /// The addresses in locals: read from the fields, they were loaded again after every store to z.
+    /// The addresses in locals: a field is loaded again after every store through a pointer.
     /// </summary>
     private double ProlongRows(int begin, int end)
     {
