@@ -407,8 +407,8 @@ public sealed class SpringNetwork : IForceGenerator, IPotentialEnergy, IBoundFor
             else
             {
                 // The arithmetic of SpringLinearization.PairWithForce, written out with locals only (through the
-                // helper's output pointers the loop ran slower than the three separate loops): the same operations,
-                // in blocks whose lengths come first (SpringLengths).
+                // helper's output pointers its values went to memory and back): the same operations, in blocks whose
+                // lengths come first (SpringLengths).
                 var y = stackalloc double[6]; // (for a spring of zero length only)
                 var roots = stackalloc double[2 * SpringLengths.Block];
                 ForcesAndLinearization(x, v, p, lin, f, into, first, second, _pairs.Count, positionScale, velocityScale, roots, y);
