@@ -26,6 +26,13 @@ namespace ParticlePhysics.Integrators.Multigrid;
 /// restriction, the prolongation or the Galerkin sums, which therefore follow pinning without a rebuild.
 /// Every pass runs in fixed chunks whose partial sums are combined in chunk order, so the result does not depend
 /// on how many threads run them.
+/// <para>Where each job lives: this file holds the setup, the entry points the solver calls and the V-cycle;
+/// AggregationMultigrid.Hierarchy.cs builds the levels from the couplings with <see cref="CouplingGraph"/>'s
+/// matchings; <see cref="FineGalerkinAssembly"/> and <see cref="CoarseGalerkinPass"/> make the Galerkin operators;
+/// <see cref="CoarseLevel"/> stores a level and applies its rows, and its passes are
+/// <see cref="BlockInversionPass"/>, <see cref="ResidualRestrictionPass"/> and <see cref="PostSmoothingPass"/>; the
+/// fine level's passes are <see cref="RestrictionPass"/>, <see cref="UpdateAndRestrictionPass"/> and
+/// <see cref="PostSmoothAndProlongPass"/>; <see cref="CoarsestSolver"/> solves the last level directly.</para>
 /// </remarks>
 internal sealed unsafe partial class AggregationMultigrid
 {

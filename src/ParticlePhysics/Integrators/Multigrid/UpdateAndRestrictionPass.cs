@@ -5,7 +5,8 @@ namespace ParticlePhysics.Integrators.Multigrid;
 
 /// <summary>
 /// <see cref="AggregationMultigrid.UpdateAndRestrict"/> in the chunks of <see cref="RestrictionPass"/>: each chunk
-/// updates its aggregates' members, then restricts their new r and sums their r . r.
+/// updates its aggregates' members, then restricts their new r and sums their r . r. One pass rather than the update's
+/// and the restriction's: a pass over the vectors and a hand-off fewer per iteration.
 /// </summary>
 internal sealed unsafe class UpdateAndRestrictionPass : IParallelWork
 {
