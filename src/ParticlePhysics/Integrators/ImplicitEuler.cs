@@ -1,7 +1,6 @@
 using System;
 using ParticlePhysics.Integrators.Multigrid;
 using ParticlePhysics.Numerics;
-using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics.Integrators;
 
