@@ -18,15 +18,16 @@ public sealed partial class ContactSet
     /// <summary>
     /// Queues each particle's first obstacle impact and each candidate pair's first impact; then, earliest first,
     /// resolves an impact, changes its particles' paths from then on, and queues their next impacts. Bounded: at most
-    /// <see cref="ImpactsPerItem"/> (N + pairs) impacts.
+    /// <see cref="ImpactsPerItem"/> (N + pairs) impacts. The queue holds at most that many and N + pairs more at once,
+    /// and grows only to what is queued at once (<see cref="ImpactQueue"/>).
     /// </summary>
     private void ResolveImpacts(in ConstraintContext context)
     {
         var n = context.Count;
         var inverseMasses = context.InverseMasses.ForReading();
         var radii = context.Radii.ForReading();
-        var budget = ImpactsPerItem * (n + _pairCount);
-        _queue.Reset(budget + n + _pairCount + 64);
+        var budget = (long)ImpactsPerItem * (n + (long)_pairCount);
+        _queue.Reset((int)Math.Min(budget + n + _pairCount + 64, int.MaxValue));
         if (_obstacles.Count == 0 && _pairCount == 0)
         {
             return;
@@ -49,7 +50,7 @@ public sealed partial class ContactSet
             }
         }
 
-        var resolved = 0;
+        var resolved = 0L;
         while (_queue.Count > 0 && resolved < budget)
         {
             var s = _queue.Pop(out var first, out var second, out var firstEpoch, out var secondEpoch);

@@ -199,7 +199,7 @@ public sealed partial class ContactSet
 
         if (_rankedPairs.Length < pairs)
         {
-            _rankedPairs = new int[Math.Max(pairs, 2 * _rankedPairs.Length)];
+            _rankedPairs = new int[Math.Max(pairs, (int)Math.Min(2L * _rankedPairs.Length, DefaultMaxCandidatePairs))];
             _pairsNear = new int[2 * _rankedPairs.Length];
         }
 
@@ -321,7 +321,11 @@ public sealed partial class ContactSet
             }
         }
 
-        _restingGrid.FindPairs(_boxMin, _boxMax, n, PairFilter);
+        if (!_restingGrid.TryFindPairs(_boxMin, _boxMax, n, PairFilter, _maxCandidatePairs))
+        {
+            RefuseCandidatePairs(n);
+        }
+
         return _restingGrid.PairCount;
     }
 

@@ -45,6 +45,9 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     /// <summary>The default <see cref="RestingSpeed"/>, 0.01 m/s.</summary>
     public const double DefaultRestingSpeed = 0.01;
 
+    /// <summary>The default, and the largest allowed, <see cref="MaxCandidatePairs"/>: 2^26 = 67,108,864.</summary>
+    public const int DefaultMaxCandidatePairs = SpatialHashGrid.MaxPairs;
+
     private readonly List<Obstacle> _obstacles = new();
     private readonly ParticlePaths _paths = new();
     private readonly ImpactQueue _queue = new();
@@ -58,6 +61,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     private double _particleRestitution;
     private double _particleFriction;
     private int _projectionIterations = 16;
+    private int _maxCandidatePairs = DefaultMaxCandidatePairs;
     private int _impactCount;
     private int _capacity = -1;
 
@@ -155,6 +159,28 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         }
     }
 
+    /// <summary>
+    /// The most candidate pairs (particles within reach of each other) a step may have, 1 to
+    /// <see cref="DefaultMaxCandidatePairs"/> (the default). The stage's memory grows with the pairs a step finds, about
+    /// 40 bytes a pair (80 while its lists double): 2.7 GB at the default, which 11,600 particles heaped at one point
+    /// reach. A step whose broad phase finds more throws <see cref="InvalidOperationException"/>: the search stops at the
+    /// limit, so nothing past it is allocated, and the world is left as it was. Lower it to fit a host's memory budget.
+    /// </summary>
+    public int MaxCandidatePairs
+    {
+        get => _maxCandidatePairs;
+        set
+        {
+            if (value < 1 || value > DefaultMaxCandidatePairs)
+            {
+                throw new ArgumentOutOfRangeException(
+                    nameof(MaxCandidatePairs), value, $"MaxCandidatePairs must be 1 to {DefaultMaxCandidatePairs}; got {value}.");
+            }
+
+            _maxCandidatePairs = value;
+        }
+    }
+
     /// <summary>The number of impacts the last step (or substep) resolved.</summary>
     public int ImpactCount => _impactCount;
 
@@ -219,6 +245,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
 
     /// <inheritdoc />
     /// <remarks>The stages listed on the class; the end state is corrected in place.</remarks>
+    /// <exception cref="InvalidOperationException">More than <see cref="MaxCandidatePairs"/> candidate pairs.</exception>
     public void Resolve(in ConstraintContext context)
     {
         var n = context.Count;
@@ -293,13 +320,17 @@ public sealed partial class ContactSet : IStatefulConstraintSet
             }
         }
 
-        _sweptGrid.FindPairs(_boxMin, _boxMax, n, PairFilter);
+        if (!_sweptGrid.TryFindPairs(_boxMin, _boxMax, n, PairFilter, _maxCandidatePairs))
+        {
+            RefuseCandidatePairs(n);
+        }
+
         var first = _sweptGrid.First.ForReading();
         var second = _sweptGrid.Second.ForReading();
         var found = _sweptGrid.PairCount;
         if (_pairFirst.Length < found)
         {
-            var capacity = Math.Max(found, 2 * _pairFirst.Length);
+            var capacity = Math.Max(found, (int)Math.Min(2L * _pairFirst.Length, DefaultMaxCandidatePairs));
             _pairFirst = new int[capacity];
             _pairSecond = new int[capacity];
             _pairResting = new bool[capacity];
@@ -362,6 +393,15 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     /// </summary>
     private bool MayMeet(int i, int j, Span<double> x0, Span<double> radii) =>
         Distance(x0, i, x0, j) <= (1.25 * (Radius(radii, i) + Radius(radii, j))) + _sweep[i] + _sweep[j];
+
+    private void RefuseCandidatePairs(int n)
+    {
+        _pairCount = 0;
+        throw new InvalidOperationException(
+            $"The contact set found more than MaxCandidatePairs = {_maxCandidatePairs} candidate pairs among {n} particles "
+            + "(particles heaped within reach of each other): the search stopped there and the step is refused, with "
+            + $"nothing changed. Spread the particles out, or raise MaxCandidatePairs (at most {DefaultMaxCandidatePairs}, about 40 bytes a pair).");
+    }
 
     private static double Distance(Span<double> a, int i, Span<double> b, int j)
     {
