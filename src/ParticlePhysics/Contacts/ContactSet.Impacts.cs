@@ -239,6 +239,7 @@ public sealed partial class ContactSet
                 _restObstacle[i] = k;
                 _restTime[i] = s;
                 _restTangent[i] = tangent;
+                _restPoint[i] = q;
             }
 
             _restingOn[i] |= 1UL << k;

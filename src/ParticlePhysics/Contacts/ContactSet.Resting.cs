@@ -14,8 +14,12 @@ public sealed partial class ContactSet
     /// tau = T - s: its end position is put back on the surface and its approaching normal velocity taken out; that
     /// normal velocity change dv_n is the normal impulse per unit mass N tau / m, so friction may take mu dv_n of
     /// tangential velocity, spread evenly over tau as the deceleration f = mu dv_n / tau (<see cref="CoulombSlide"/>),
-    /// along the direction it slid in when it came to rest. Exact on a plane under constant forces: a slide stops
-    /// after v0^2 / (2 mu g), and a particle on an incline sticks exactly when tan(theta) &lt;= mu.
+    /// along the direction it slid in when it came to rest. The applied tangential acceleration is the integrator's
+    /// change of tangential velocity over tau, and the distance it moved is measured from where the particle came to
+    /// rest, relative to the obstacle; every integrator changes the velocity exactly under constant forces, and the
+    /// correction is taken against the distance it actually moved, so that on a plane under constant forces, under
+    /// every integrator, a slide stops after v0^2 / (2 mu g) and a particle on an incline sticks exactly when
+    /// tan(theta) &lt;= mu.
     /// </summary>
     private void ApplyRestingFriction(in ConstraintContext context)
     {
@@ -68,7 +72,8 @@ public sealed partial class ContactSet
                 if (direction != Vector3d.Zero)
                 {
                     var applied = (Vector3d.Dot(w1, direction) - w0Speed) / tau;
-                    CoulombSlide.Correction(w0Speed, applied, f / tau, tau, out var dw, out var dx);
+                    var moved = Vector3d.Dot(position - obstacle.OffsetAt(end) - _restPoint[i], direction);
+                    CoulombSlide.Correction(w0Speed, applied, f / tau, tau, moved, out var dw, out var dx);
                     velocity += dw * direction;
                     position += dx * direction;
                 }

@@ -66,12 +66,14 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     private int _capacity = -1;
 
     // Per particle: the epoch of its path (bumped by every impulse), the obstacles it rests on (a bit mask), the first
-    // of them with the time it came to rest and its tangential velocity then; the swept box for the broad phase.
+    // of them with the time it came to rest, its tangential velocity and its place relative to the obstacle then; the
+    // swept box for the broad phase.
     private int[] _epoch = Array.Empty<int>();
     private ulong[] _restingOn = Array.Empty<ulong>();
     private int[] _restObstacle = Array.Empty<int>();
     private double[] _restTime = Array.Empty<double>();
     private Vector3d[] _restTangent = Array.Empty<Vector3d>();
+    private Vector3d[] _restPoint = Array.Empty<Vector3d>();
     private double[] _boxMin = Array.Empty<double>();
     private double[] _boxMax = Array.Empty<double>();
     private double[] _sweep = Array.Empty<double>();
@@ -293,6 +295,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         _restObstacle = new int[n];
         _restTime = new double[n];
         _restTangent = new Vector3d[n];
+        _restPoint = new Vector3d[n];
         _boxMin = new double[3 * n];
         _boxMax = new double[3 * n];
         _sweep = new double[n];

@@ -93,6 +93,46 @@ public class FrictionTests
         Assert.True(Math.Abs(moved - expected) < 1e-9 * Math.Max(1, expected), $"moved {moved:R}, expected {expected:R}");
     }
 
+    public static TheoryData<string, double> EveryIntegratorAndStep()
+    {
+        var data = new TheoryData<string, double>();
+        foreach (var name in IntegratorCatalog.Names)
+        {
+            data.Add(name, 0.001);
+            data.Add(name, 1.0 / 60.0);
+        }
+
+        return data;
+    }
+
+    [Theory]
+    [MemberData(nameof(EveryIntegratorAndStep))]
+    public void Under_every_integrator_a_particle_at_rest_on_an_incline_within_the_friction_cone_stays_exactly_put(string integrator, double dt)
+    {
+        // Issue 27, item 5: on 30 degrees with mu = 0.6 (> tan 30 = 0.577) at 60 Hz the Euler integrators moved 0.0409 m
+        // in 1 s, g sin(theta) dt^2 / 2 a step: the correction took a t^2 / 2 off, what an exact integrator adds.
+        var theta = 30 * Math.PI / 180;
+        var start = new Vector3d(1, 2, 3);
+        var world = new ParticleWorld();
+        world.AddParticle(start, 1);
+        world.AddForce(Gravity.Down(G));
+        var contacts = new ContactSet();
+        contacts.Add(new PlaneObstacle(start, new Vector3d(-Math.Sin(theta), Math.Cos(theta), 0), 0, 0.6));
+        world.AddConstraints(contacts);
+        StepFor(world, integrator, dt, 1.0);
+        Assert.True((world.GetPosition(0) - start).Length < 1e-12, $"moved {(world.GetPosition(0) - start).Length:R} m to {world.GetPosition(0)}");
+        Assert.True(world.GetVelocity(0).Length < 1e-12, $"moving at {world.GetVelocity(0)}");
+
+        // Thrown up the slope, it stops and then stays where it stopped.
+        var up = new Vector3d(Math.Cos(theta), Math.Sin(theta), 0);
+        world.SetVelocity(0, 2.0 * up);
+        StepFor(world, integrator, dt, 0.5);
+        var stopped = world.GetPosition(0);
+        Assert.True(Vector3d.Dot(stopped - start, up) > 0.1, $"{integrator}: stopped at {stopped}");
+        StepFor(world, integrator, dt, 1.0);
+        Assert.True((world.GetPosition(0) - stopped).Length < 1e-12, $"crept {(world.GetPosition(0) - stopped).Length:R} m after stopping");
+    }
+
     [Fact]
     public void A_particle_pushed_up_an_incline_stops_and_slides_back_when_tan_theta_exceeds_mu()
     {
