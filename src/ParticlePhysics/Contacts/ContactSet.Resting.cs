@@ -313,16 +313,23 @@ public sealed partial class ContactSet
         return (dx * dx) + (dy * dy) + (dz * dz) <= reach * reach;
     }
 
-    /// <summary>The pairs whose spheres, grown by a quarter of their radius, overlap at the end positions.</summary>
-    private int FindRestingPairs(int n, Span<double> x, Span<double> radii)
+    /// <summary>
+    /// The pairs whose spheres, grown by a quarter of their radius, overlap at the end positions; with
+    /// <paramref name="swept"/>, a particle marked fast has a box over its whole straight move from
+    /// <paramref name="previous"/> (a slow one moved less than its radius, which the quarter radius more covers).
+    /// </summary>
+    private int FindRestingPairs(int n, Span<double> x, Span<double> previous, Span<double> radii, bool swept)
     {
         for (var i = 0; i < n; i++)
         {
             var grow = 1.25 * Radius(radii, i);
+            var fast = swept && _fast[i];
             for (var c = 0; c < 3; c++)
             {
-                _boxMin[(3 * i) + c] = x[(3 * i) + c] - grow;
-                _boxMax[(3 * i) + c] = x[(3 * i) + c] + grow;
+                var end = x[(3 * i) + c];
+                var start = fast ? previous[(3 * i) + c] : end;
+                _boxMin[(3 * i) + c] = Math.Min(start, end) - grow;
+                _boxMax[(3 * i) + c] = Math.Max(start, end) + grow;
             }
         }
 

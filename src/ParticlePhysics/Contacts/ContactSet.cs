@@ -77,6 +77,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     private double[] _boxMin = Array.Empty<double>();
     private double[] _boxMax = Array.Empty<double>();
     private double[] _sweep = Array.Empty<double>();
+    private bool[] _fast = Array.Empty<bool>(); // under substeps: moved its radius or more in the substep
 
     // The candidate pairs of this step (from the swept grid), whether each came to rest, and each particle's pairs (CSR).
     private int[] _pairFirst = Array.Empty<int>();
@@ -299,6 +300,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         _boxMin = new double[3 * n];
         _boxMax = new double[3 * n];
         _sweep = new double[n];
+        _fast = new bool[n];
         _pairsOfStart = new int[n + 1];
         _capacity = n;
     }
