@@ -134,7 +134,7 @@ public sealed partial class ContactSet
             _paths.Evaluate(a, 0.0, out var pa, out var va);
             _paths.Evaluate(b, 0.0, out var pb, out var vb);
             var d = pa - pb;
-            var gap = SphereObstacle.PointDistance(d.X, d.Y, d.Z, out var nx, out var ny, out var nz) - reach;
+            var gap = PairNormal.Of(d.X, d.Y, d.Z, a, b, out var nx, out var ny, out var nz) - reach;
             var u = -Vector3d.Dot(va - vb, new Vector3d(nx, ny, nz));
             if (gap <= ContactSearch.ToleranceAt(Math.Abs(pa.X) + Math.Abs(pa.Y) + Math.Abs(pa.Z)) + (RestingMargin * reach)
                 && u >= 0.0 && !(_particleRestitution * u > _restingSpeed))
@@ -266,7 +266,7 @@ public sealed partial class ContactSet
         _paths.Evaluate(a, s, out var pa, out var va);
         _paths.Evaluate(b, s, out var pb, out var vb);
         var d = pa - pb;
-        _ = SphereObstacle.PointDistance(d.X, d.Y, d.Z, out var nx, out var ny, out var nz);
+        _ = PairNormal.Of(d.X, d.Y, d.Z, a, b, out var nx, out var ny, out var nz);
         var normal = new Vector3d(nx, ny, nz);
         var relative = va - vb;
         var u = -Vector3d.Dot(relative, normal);

@@ -360,7 +360,7 @@ public sealed partial class ContactSet
             return 0.0;
         }
 
-        var distance = SphereObstacle.PointDistance(dx, dy, dz, out var nx, out var ny, out var nz);
+        var distance = PairNormal.Of(dx, dy, dz, a, b, out var nx, out var ny, out var nz);
         var overlap = reach - distance;
         var sa = overlap * wa / w;
         var sb = overlap * wb / w;

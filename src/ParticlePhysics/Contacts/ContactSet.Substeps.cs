@@ -208,7 +208,7 @@ public sealed partial class ContactSet
         var wb = inverseMasses[b];
         var x = context.Positions;
         var d = Read(x, a) - Read(x, b);
-        var distance = SphereObstacle.PointDistance(d.X, d.Y, d.Z, out var nx, out var ny, out var nz);
+        var distance = PairNormal.Of(d.X, d.Y, d.Z, a, b, out var nx, out var ny, out var nz);
         normal = new Vector3d(nx, ny, nz);
         var overlap = Radius(radii, a) + Radius(radii, b) - distance;
         if (!(overlap > 0.0) || wa + wb == 0.0)
@@ -276,7 +276,7 @@ public sealed partial class ContactSet
         }
 
         var contact = d0 + (t * move);
-        _ = SphereObstacle.PointDistance(contact.X, contact.Y, contact.Z, out var nx, out var ny, out var nz);
+        _ = PairNormal.Of(contact.X, contact.Y, contact.Z, a, b, out var nx, out var ny, out var nz);
         normal = new Vector3d(nx, ny, nz);
         var inverseMasses = context.InverseMasses.ForReading();
         var wa = inverseMasses[a];

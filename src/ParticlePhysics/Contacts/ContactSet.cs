@@ -16,7 +16,8 @@ namespace ParticlePhysics.Contacts;
 /// min(|tangential velocity|, mu (1 + e) u) of its tangential velocity (mu: Coulomb friction as an impulse); an impact
 /// whose rebound e u is below <see cref="RestingSpeed"/> does not bounce but rests, held by the normal force N, and
 /// slides with friction mu N until it stops. Between particles the impulse acts along the line of centres and conserves
-/// momentum.
+/// momentum; two particles at exactly the same point (spawned there) separate along a direction taken from their
+/// indices (<see cref="PairNormal"/>), so that a heap spawned at one point opens in every direction.
 /// </para>
 /// <para>
 /// After a force-based integrator (<see cref="Resolve"/>), in stages: (1) each particle's path within the step is the

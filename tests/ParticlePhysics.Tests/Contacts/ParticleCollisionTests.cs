@@ -143,6 +143,29 @@ public class ParticleCollisionTests
     }
 
     [Fact]
+    public void Coincident_particles_get_an_antisymmetric_unit_normal_from_their_indices_in_every_direction()
+    {
+        // Two particles at one point have no line of centres: the normal comes from their indices, the same on every
+        // run, opposite for the pair seen from the other end, and spread over the sphere (not +y for every pair).
+        var octants = new bool[8];
+        for (var a = 0; a < 200; a++)
+        {
+            for (var b = a + 1; b < 200; b += 7)
+            {
+                Assert.Equal(0.0, PairNormal.Of(0, 0, 0, a, b, out var x, out var y, out var z));
+                PairNormal.Coincident(b, a, out var bx, out var by, out var bz);
+                Assert.Equal((-x, -y, -z), (bx, by, bz));
+                Assert.Equal(1.0, Math.Sqrt((x * x) + (y * y) + (z * z)), 14);
+                octants[(x > 0 ? 1 : 0) + (y > 0 ? 2 : 0) + (z > 0 ? 4 : 0)] = true;
+            }
+        }
+
+        Assert.All(octants, Assert.True);
+        Assert.Equal(2.0, PairNormal.Of(0, 2, 0, 3, 4, out var nx, out var ny, out var nz));
+        Assert.Equal((0.0, 1.0, 0.0), (nx, ny, nz)); // apart, the line of centres as before
+    }
+
+    [Fact]
     public void A_pinned_particle_is_an_immovable_sphere()
     {
         var world = new ParticleWorld();
