@@ -14,11 +14,11 @@ public sealed partial class ContactSet
     /// tau = T - s: its end position is put back on the surface and its approaching normal velocity taken out; that
     /// normal velocity change dv_n is the normal impulse per unit mass N tau / m, so friction may take mu dv_n of
     /// tangential velocity, spread evenly over tau as the deceleration f = mu dv_n / tau (<see cref="CoulombSlide"/>),
-    /// along the direction it slid in when it came to rest. The applied tangential acceleration is the integrator's
-    /// change of tangential velocity over tau, and the distance it moved is measured from where the particle came to
-    /// rest, relative to the obstacle; every integrator changes the velocity exactly under constant forces, and the
-    /// correction is taken against the distance it actually moved, so that on a plane under constant forces, under
-    /// every integrator, a slide stops after v0^2 / (2 mu g) and a particle on an incline sticks exactly when
+    /// against the direction it slid in when it came to rest, or, at rest, against the whole applied tangential force.
+    /// The applied tangential acceleration is the integrator's change of tangential velocity over tau (exact under
+    /// constant forces for every integrator), and what the integrator moved since the particle came to rest, relative to
+    /// the obstacle, is replaced along friction's line by the frictional motion, so that on a plane under constant forces,
+    /// under every integrator, a slide stops after v0^2 / (2 mu g) and a particle on an incline sticks exactly when
     /// tan(theta) &lt;= mu.
     /// </summary>
     private void ApplyRestingFriction(in ConstraintContext context)
@@ -64,19 +64,15 @@ public sealed partial class ContactSet
             var f = obstacle.Friction * Math.Max(-un, 0.0);
             if (f > 0.0 && tau > 0.0)
             {
-                // The tangential velocity at the start of the rest and at the end, in the end's tangent plane.
+                // The tangential velocity at the start of the rest and at the end, and the displacement since the
+                // particle came to rest (relative to the obstacle), in the end's tangent plane.
                 var w0 = _restTangent[i] - (Vector3d.Dot(_restTangent[i], normal) * normal);
                 var w1 = relative - (Vector3d.Dot(relative, normal) * normal);
-                var w0Speed = w0.Length;
-                var direction = w0Speed > 0.0 ? w0 / w0Speed : w1.Length > 0.0 ? w1 / w1.Length : Vector3d.Zero;
-                if (direction != Vector3d.Zero)
-                {
-                    var applied = (Vector3d.Dot(w1, direction) - w0Speed) / tau;
-                    var moved = Vector3d.Dot(position - obstacle.OffsetAt(end) - _restPoint[i], direction);
-                    CoulombSlide.Correction(w0Speed, applied, f / tau, tau, moved, out var dw, out var dx);
-                    velocity += dw * direction;
-                    position += dx * direction;
-                }
+                var moved = position - obstacle.OffsetAt(end) - _restPoint[i];
+                moved -= Vector3d.Dot(moved, normal) * normal;
+                CoulombSlide.Correction(w0, w1, f / tau, tau, moved, out var dw, out var dx);
+                velocity += dw;
+                position += dx;
             }
 
             Write(x, i, position);
