@@ -3,6 +3,7 @@ using System.Collections.Generic;
 using System.Globalization;
 using System.IO;
 using System.Text;
+using ParticlePhysics.Scenes.Text;
 
 namespace ParticlePhysics.Scenes.Json;
 
@@ -438,8 +439,7 @@ internal sealed class JsonParser
         }
 
         var text = _text.ToString();
-        var value = double.Parse(text, NumberStyles.Float, CultureInfo.InvariantCulture);
-        if (double.IsInfinity(value))
+        if (!DecimalParser.TryParse(text.AsSpan(), out var value))
         {
             throw Fail(line, column, text, "a number beyond the range of a double (about 1.8e308)");
         }
