@@ -2,6 +2,7 @@ using System;
 using System.Collections.Generic;
 using System.Globalization;
 using System.Numerics;
+using ParticlePhysics.Internal;
 using ParticlePhysics.Numerics;
 using ParticlePhysics.Parallel;
 
@@ -438,7 +439,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
             throw new ArgumentException("This force generator is already in the system.", nameof(generator));
         }
 
-        if (generator is IBoundForce { System: { } owner } && !ReferenceEquals(owner, this))
+        if (generator is IBoundForce { World: { } owner } && !ReferenceEquals(owner, this))
         {
             throw new ArgumentException(
                 "This force generator was built for another particle system: its particle indices refer to that one.",

@@ -1,5 +1,6 @@
 using System;
 using ParticlePhysics.Integrators.Multigrid;
+using ParticlePhysics.Internal;
 using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Integrators;

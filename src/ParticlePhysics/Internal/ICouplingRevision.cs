@@ -1,4 +1,4 @@
-namespace ParticlePhysics;
+namespace ParticlePhysics.Internal;
 
 /// <summary>
 /// A linearisable system that can tell, without writing its couplings out, that they have not changed: the implicit

@@ -1,6 +1,6 @@
 using System;
 
-namespace ParticlePhysics;
+namespace ParticlePhysics.Internal;
 
 /// <summary>
 /// A linearisable system whose Jacobian product ends with a uniform term, result[k] += c w[k] on every coordinate
