@@ -2,7 +2,9 @@ using System;
 
 namespace ParticlePhysics.Constraints;
 
-// J W J^T of a net (a band too wide to factorise): Jacobi-preconditioned conjugate gradients, matrix-free.
+// J W J^T of a net (a band too wide to factorise): Jacobi-preconditioned conjugate gradients, matrix-free. Not a dense
+// Cholesky (Numerics/DenseLinearSolver): the matrix has a few entries per row, so a product costs O(links) where a dense
+// factorisation costs links^3 / 6 per evaluation, and a net with redundant rods (a singular J W J^T) needs no pivot floor.
 public sealed partial class RodNetwork
 {
     // Conjugate gradients stop at this relative residual, or after 2 n + 50 iterations (n links).
