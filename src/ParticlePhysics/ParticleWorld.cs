@@ -257,8 +257,8 @@ public sealed partial class ParticleWorld
     /// The velocity (target - x) / duration that takes particle <paramref name="index"/> to <paramref name="target"/>
     /// in <paramref name="duration"/> seconds (both finite, the duration positive), or an exception that names what is
     /// out of range. The difference comes first, so a particle already there gets 0 at any duration; it is scaled by
-    /// 1 / duration (the bits of every run before), and divided instead where that is not finite: below
-    /// 1 / double.MaxValue (about 5.6e-309 s) the inverse overflows, and 0 times it was NaN. A target too far names
+    /// 1 / duration (the bits the golden hashes hold), and divided instead where that is not finite: below
+    /// 1 / double.MaxValue (about 5.6e-309 s) the inverse overflows, and 0 times it would be NaN. A target too far names
     /// <paramref name="targetName"/>, the parameter the caller's target came from.
     /// </summary>
     internal Vector3d KinematicVelocity(int index, Vector3d target, double duration, string targetName)
