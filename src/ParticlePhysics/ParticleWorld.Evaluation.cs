@@ -69,14 +69,21 @@ public sealed partial class ParticleWorld : ISecondOrderSystem
         var forces = _forces.AsSpan(0, n);
         forces.Clear();
         var view = new ParticleState(time, positions, velocities, Masses, InverseMasses, Runner);
+        var started = ProfileStart();
         for (var g = 0; g < _forceGenerators.Count; g++)
         {
             _forceGenerators[g].AddForces(in view, forces);
         }
 
-        for (var c = 0; c < _constraintForces.Count; c++)
+        var generated = ProfileEvaluation(started);
+        if (_constraintForces.Count > 0)
         {
-            _constraintForces[c].AddConstraintForces(in view, forces);
+            for (var c = 0; c < _constraintForces.Count; c++)
+            {
+                _constraintForces[c].AddConstraintForces(in view, forces);
+            }
+
+            ProfileConstraintForces(generated, _constraintForces.Count);
         }
 
         return forces;

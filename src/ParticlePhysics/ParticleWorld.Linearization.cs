@@ -47,11 +47,13 @@ public sealed partial class ParticleWorld : ILinearizableSystem, ICouplingRevisi
         }
 
         var view = new ParticleState(time, positions, velocities, Masses, InverseMasses, Runner);
+        var started = ProfileStart();
         for (var j = 0; j < _linearized.Count; j++)
         {
             _linearized[j].Linearize(view, positionScale, velocityScale, positionJacobianTimesVelocity);
         }
 
+        ProfileForces(started);
         _linearizedVersion = _structureVersion;
     }
 
@@ -85,6 +87,7 @@ public sealed partial class ParticleWorld : ILinearizableSystem, ICouplingRevisi
         var forces = _forces.AsSpan(0, n);
         forces.Clear();
         var view = new ParticleState(time, positions, velocities, Masses, InverseMasses, Runner);
+        var started = ProfileStart();
         var next = 0; // the next entry of _linearized: the generators' own Jacobians and wrappers, in generator order
         for (var g = 0; g < _forceGenerators.Count; g++)
         {
@@ -104,6 +107,7 @@ public sealed partial class ParticleWorld : ILinearizableSystem, ICouplingRevisi
             }
         }
 
+        var generated = ProfileEvaluation(started);
         for (var c = 0; c < _constraintForces.Count; c++)
         {
             _constraintForces[c].AddConstraintForces(in view, forces);
@@ -114,6 +118,11 @@ public sealed partial class ParticleWorld : ILinearizableSystem, ICouplingRevisi
                 jacobian.Linearize(view, positionScale, velocityScale, positionJacobianTimesVelocity);
                 jacobian.AddDiagonalBlocks(diagonalBlocks);
             }
+        }
+
+        if (_constraintForces.Count > 0)
+        {
+            ProfileConstraintForces(generated, _constraintForces.Count);
         }
 
         _linearizedVersion = _structureVersion;
@@ -182,10 +191,13 @@ public sealed partial class ParticleWorld : ILinearizableSystem, ICouplingRevisi
     void ILinearizableSystem.AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
     {
         CheckLinearized(w.Length, result.Length, 3);
+        var started = ProfileStart();
         for (var j = 0; j < _linearized.Count; j++)
         {
             _linearized[j].AddJacobianProduct(w, result);
         }
+
+        ProfileProduct(started);
     }
 
     /// <inheritdoc />
@@ -208,10 +220,13 @@ public sealed partial class ParticleWorld : ILinearizableSystem, ICouplingRevisi
             throw new InvalidOperationException("The world's Jacobian product has no uniform tail: use AddJacobianProduct.");
         }
 
+        var started = ProfileStart();
         for (var j = 0; j < tail; j++)
         {
             _linearized[j].AddJacobianProduct(w, result);
         }
+
+        ProfileProduct(started);
     }
 
     /// <summary>
@@ -251,10 +266,13 @@ public sealed partial class ParticleWorld : ILinearizableSystem, ICouplingRevisi
     void ILinearizableSystem.AddDiagonalBlocks(Span<double> blocks)
     {
         CheckLinearized(blocks.Length, blocks.Length, 9);
+        var started = ProfileStart();
         for (var j = 0; j < _linearized.Count; j++)
         {
             _linearized[j].AddDiagonalBlocks(blocks);
         }
+
+        ProfileForces(started);
     }
 
     /// <inheritdoc />

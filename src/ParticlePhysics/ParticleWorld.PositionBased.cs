@@ -29,10 +29,13 @@ public sealed partial class ParticleWorld : IPositionBasedSystem
         var forces = _forces.AsSpan(0, n);
         forces.Clear();
         var view = new ParticleState(time, positions, velocities, Masses, InverseMasses, Runner);
+        var started = ProfileStart();
         for (var g = 0; g < _unprojected.Count; g++)
         {
             _unprojected[g].AddForces(in view, forces);
         }
+
+        _ = ProfileEvaluation(started);
 
         unsafe
         {
@@ -64,9 +67,13 @@ public sealed partial class ParticleWorld : IPositionBasedSystem
         Span<double> velocities)
     {
         var context = SubstepContext(time, dt, startPositions, startVelocities, positions, velocities);
+        _substeps++;
         for (var c = 0; c < _constraintSets.Count; c++)
         {
-            _constraintSets[c].Project(in context);
+            var set = _constraintSets[c];
+            var started = ProfileStart();
+            set.Project(in context);
+            ProfileSet(set, started);
         }
     }
 
@@ -82,7 +89,10 @@ public sealed partial class ParticleWorld : IPositionBasedSystem
         var context = SubstepContext(time, dt, startPositions, startVelocities, positions, velocities);
         for (var c = 0; c < _constraintSets.Count; c++)
         {
-            _constraintSets[c].SolveVelocities(in context);
+            var set = _constraintSets[c];
+            var started = ProfileStart();
+            set.SolveVelocities(in context);
+            ProfileSet(set, started);
         }
     }
 

@@ -38,6 +38,7 @@ public sealed partial class ParticleWorld
         Guard.NotNull(integrator, nameof(integrator));
         Guard.PositiveFinite(dt, nameof(dt));
         Guard.FiniteEndTime(_time, dt);
+        var started = ProfileStart();
         Compact();
         var dimension = 6 * _count;
         if (_next.Length != dimension)
@@ -52,6 +53,12 @@ public sealed partial class ParticleWorld
         if (bracket)
         {
             BeginConstraintSets();
+        }
+
+        var profiling = _profiling;
+        if (profiling)
+        {
+            BeginProfile();
         }
 
         _stepping = true;
@@ -88,6 +95,15 @@ public sealed partial class ParticleWorld
             if (bracket)
             {
                 EndConstraintSets(committed);
+            }
+
+            if (profiling)
+            {
+                EndProfile(committed, started);
+            }
+            else if (committed)
+            {
+                _lastProfile = default;
             }
         }
     }
@@ -199,7 +215,10 @@ public sealed partial class ParticleWorld
             _time, dt, start.Slice(0, n), start.Slice(n, n), end.Slice(0, n), end.Slice(n, n), Masses, InverseMasses, Radii, Runner, kickDrift);
         for (var c = 0; c < _constraintSets.Count; c++)
         {
-            _constraintSets[c].Resolve(in context);
+            var set = _constraintSets[c];
+            var started = ProfileStart();
+            set.Resolve(in context);
+            ProfileSet(set, started);
         }
     }
 
