@@ -79,7 +79,7 @@ internal sealed record RunCost(long Steps, int Particles, long Springs, double S
         var integratorBytes = (long)(_integratorBytes.TryGetValue(integrator, out var b) ? b : 96) * particles;
         if (integrator == "implicit-euler" && particles >= ImplicitEuler.MultigridThreshold && springs > 0)
         {
-            // The multigrid preconditioner (Integrators/AggregationMultigrid.cs): 8 ints per coupling (the pairs, their
+            // The multigrid preconditioner (Integrators/Multigrid/): 8 ints per coupling (the pairs, their
             // copy for the change check, the two block targets and the assembly's masked targets), and per particle the
             // aggregation maps and the coarse levels' 3 x 3 blocks (about a quarter as many rows per level, some nine
             // blocks each): 320 bytes, from the 64 x 64 cloth's 2.05 MB that the measurement below found beyond the rest.

@@ -75,10 +75,12 @@ internal sealed class ClothKind : ISceneObjectKind
             throw reader.Error(reader.Get("velocities")!.Value, reader.PathOf("velocities"), $"lists {velocities.Count} velocities for {mesh.VertexCount} vertices; give one per vertex");
         }
 
+        // Copies, not the mesh's spans: this assembly must not index a ReadOnlySpan (its indexer does not bind on Mono).
+        var firstVertex = mesh.FirstVertexOfParticle.ToArray();
         var particleVelocities = new Vector3d[velocities is null ? 0 : mesh.ParticleCount];
         for (var i = 0; i < particleVelocities.Length; i++)
         {
-            particleVelocities[i] = velocities![mesh.FirstVertexOfParticle[i]].Vector;
+            particleVelocities[i] = velocities![firstVertex[i]].Vector;
         }
 
         foreach (var pin in reader.Indices("pinned") ?? new List<IndexRef>())
@@ -265,7 +267,7 @@ internal sealed class ClothKind : ISceneObjectKind
             _builder.AddElements(_first, springs, membrane, bending);
             builder.Count("springs", (springs?.Count ?? 0) - before);
             builder.Count("bending elements", (bending?.Count ?? 0) - elements);
-            var triangles = _builder.Mesh.ParticleTriangles;
+            var triangles = _builder.Mesh.ParticleTriangles.ToArray();
             for (var t = 0; t < _builder.Mesh.TriangleCount; t++)
             {
                 builder.AddMeshEdge(_first + triangles[3 * t], _first + triangles[(3 * t) + 1]);

@@ -1,5 +1,6 @@
 using System;
 using System.Runtime.InteropServices;
+using ParticlePhysics.Internal;
 using ParticlePhysics.Numerics;
 using ParticlePhysics.Parallel;
 
@@ -77,7 +78,7 @@ public sealed class QuadraticBending : IForceGenerator, IPotentialEnergy, IBound
     /// <inheritdoc />
     public int ParameterVersion => _parameterVersion;
 
-    ParticleWorld? IBoundForce.System => _system;
+    object? IBoundForce.World => _system;
 
     /// <summary>
     /// Adds an element: <paramref name="particles"/> (2 to 6 distinct existing particles), its weights

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Internal;
 using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Forces;
@@ -63,7 +64,7 @@ public sealed class TriangleMembrane : IForceGenerator, IPotentialEnergy, IBound
     /// <inheritdoc />
     public int ParameterVersion => _parameterVersion;
 
-    ParticleWorld? IBoundForce.System => _system;
+    object? IBoundForce.World => _system;
 
     /// <summary>
     /// Adds a triangle of three distinct existing particles, at rest in the shape of <paramref name="rest0"/>,

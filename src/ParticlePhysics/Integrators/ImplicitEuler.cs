@@ -1,6 +1,7 @@
 using System;
+using ParticlePhysics.Integrators.Multigrid;
+using ParticlePhysics.Internal;
 using ParticlePhysics.Numerics;
-using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics.Integrators;
 
@@ -23,11 +24,8 @@ namespace ParticlePhysics.Integrators;
 /// finite-difference Jacobian and a dense LU factorisation (fine for small systems such as the course's scalar ODE).
 /// Order 1. Stability: the whole left half-plane (A-stable), so any h is stable on a damped linear system.
 /// </remarks>
-public sealed class ImplicitEuler : IStatefulIntegrator
+public sealed partial class ImplicitEuler : IStatefulIntegrator
 {
-    /// <summary>Newton's method on a plain ODE stops when its update is this small relative to 1 + |y|.</summary>
-    private const double NewtonTolerance = 1e-12;
-
     private double _tolerance = 1e-6;
     private int _maxIterations = 200;
 
@@ -53,14 +51,6 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     private double[]? _blocks;
     private ConjugateGradientPasses? _passes;
     private AggregationMultigrid? _multigrid;
-
-    // Plain-ODE path.
-    private double[]? _newtonY;
-    private double[]? _newtonF;
-    private double[]? _newtonFShifted;
-    private double[]? _newtonMatrix;
-    private double[]? _newtonDelta;
-    private int[]? _pivots;
 
     /// <inheritdoc />
     public string Name => "implicit-euler";
@@ -239,13 +229,11 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         // multigrid, with the products q_a ~ A u_a that the last solves left behind (each one's b - r, with its own
         // step's matrix: no product is spent here), the start sum c_a u_a in the span of the last four that satisfies
         // the Galerkin conditions u_j . (b - sum c_a q_a) = 0 (one pass for the sums, a 4 x 4 solve; fewer steps when
-        // the system is singular, the extrapolation when none is left). Measured (docs/benchmarks.md, "The warm
-        // start from the last four steps"): on the 64 x 64 cloth's first second, 7.10 iterations per frame at 1e-3
-        // with the last two steps (7.55 with the extrapolation), 6.83 with four, and 20.98 and 17.10 at 1e-6; over ten
-        // cases 6038 iterations with two, 5433 with four. Under block Jacobi the plane of two took 15 % more (the
-        // energy it removes is in the stiff components, which block Jacobi damps anyway), hence not there.
-        // Pinned components are always 0. The committed warm start is only read here: a step that fails leaves it as
-        // it was (CommitStep moves dv and its product in).
+        // the system is singular, the extrapolation when none is left): it removes the error in the span of those
+        // steps, where the smooth part of the motion lies. Not under block Jacobi: the error it removes there is in the
+        // stiff components, which block Jacobi damps anyway (docs/benchmarks.md, "The warm start" and "The warm start
+        // from the last four steps"). Pinned components are always 0. The committed warm start is only read here: a
+        // step that fails leaves it as it was (CommitStep moves dv and its product in).
         var known = WarmStart && _history.Length == n ? _history.Known : 0;
         var knownProducts = known > 0 ? Math.Min(_history.KnownProducts, known) : 0;
         // The start from the products is the multigrid's, so only its steps keep their products; taken before the
@@ -295,22 +283,20 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         var target = _tolerance * rhsNorm;
         if (residualNorm > target && _maxIterations > 0)
         {
-            var gamma = Precondition(passes, ref multigrid, runner);
+            var gamma = Precondition(passes, ref multigrid);
             var delta = ApplySystemMatrix(system, tail, passes, time, end);
             var alpha = gamma / delta;
             var beta = 0.0;
             while (delta > 0.0)
             {
-                residualNorm = Math.Sqrt(multigrid
-                    ? _multigrid!.BeginApply(passes, alpha, beta, update: true, runner)
-                    : passes.Update(alpha, beta));
+                residualNorm = Math.Sqrt(multigrid ? passes.UpdateAndRestrict(_multigrid!, alpha, beta) : passes.Update(alpha, beta));
                 iterations++;
                 if (residualNorm <= target || iterations >= _maxIterations || !DoubleChecks.IsFinite(residualNorm))
                 {
                     break;
                 }
 
-                var gammaNext = multigrid ? _multigrid!.FinishApply(passes, runner) : passes.LastJacobiProduct;
+                var gammaNext = multigrid ? passes.CycleAndProlong(_multigrid!) : passes.LastJacobiProduct;
                 var restart = false;
                 if (multigrid && !(gammaNext > 0.0))
                 {
@@ -381,9 +367,9 @@ public sealed class ImplicitEuler : IStatefulIntegrator
 
     /// <summary>
     /// Solves the leading m x m block of the Gram matrix (row stride <paramref name="stride"/>) against the
-    /// projections into <see cref="_startCoefficients"/>, by <see cref="LuSolve"/>; false when a pivot is at most 1e-12
-    /// of the block's largest entry, when m = 1 and u . q is not positive (u . q ~ u . A u must be, A being positive
-    /// definite, else the product is not to be trusted), or when a coefficient is not finite.
+    /// projections into <see cref="_startCoefficients"/>, by LU (<see cref="DenseLinearSolver.SolveLu"/>); false when
+    /// a pivot is at most 1e-12 of the block's largest entry, when m = 1 and u . q is not positive (u . q ~ u . A u
+    /// must be, A being positive definite, else the product is not to be trusted), or when a coefficient is not finite.
     /// </summary>
     private bool SolveGalerkin(int m, int stride)
     {
@@ -399,7 +385,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
             _startCoefficients[i] = _projections[i];
         }
 
-        if ((m == 1 && !(_elimination[0] > 0.0)) || !LuSolve(_elimination, _eliminationPivots, _startCoefficients, m, 1e-12 * scale))
+        if ((m == 1 && !(_elimination[0] > 0.0)) || !DenseLinearSolver.SolveLu(_elimination, _eliminationPivots, _startCoefficients, m, 1e-12 * scale))
         {
             return false;
         }
@@ -419,12 +405,12 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     /// z = P r with the multigrid, or block Jacobi (also when the multigrid is not positive along r: a force whose
     /// couplings are not of pair form); returns r . z, summed in chunk order.
     /// </summary>
-    private double Precondition(ConjugateGradientPasses passes, ref bool multigrid, IParallelRunner? runner)
+    private double Precondition(ConjugateGradientPasses passes, ref bool multigrid)
     {
         if (multigrid)
         {
-            _ = _multigrid!.BeginApply(passes, 0.0, 0.0, update: false, runner);
-            var rz = _multigrid.FinishApply(passes, runner);
+            passes.Restrict(_multigrid!);
+            var rz = passes.CycleAndProlong(_multigrid!);
             if (rz > 0.0)
             {
                 return rz;
@@ -494,127 +480,5 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         {
             system.AddJacobianProduct(w, jw);
         }
-    }
-
-    /// <summary>Newton on G(y) = y - y0 - h f(t + h, y) = 0, with a forward-difference Jacobian and partial-pivot LU.</summary>
-    private void StepNewton(IOdeSystem system, double time, ReadOnlySpan<double> state, Span<double> next, double h)
-    {
-        var n = state.Length;
-        var y0 = state.ForReading();
-        var y = _newtonY = StepChecks.Sized(_newtonY, n);
-        var f = _newtonF = StepChecks.Sized(_newtonF, n);
-        var shifted = _newtonFShifted = StepChecks.Sized(_newtonFShifted, n);
-        var matrix = _newtonMatrix = StepChecks.Sized(_newtonMatrix, n * n);
-        var delta = _newtonDelta = StepChecks.Sized(_newtonDelta, n);
-        var pivots = _pivots = _pivots is not null && _pivots.Length == n ? _pivots : new int[n];
-        var end = time + h;
-
-        state.CopyTo(y);
-        var iterations = 0;
-        var update = double.PositiveInfinity;
-        while (iterations < _maxIterations)
-        {
-            system.Evaluate(end, y, f);
-            for (var j = 0; j < n; j++)
-            {
-                // Column j of dG/dy = I - h df/dy by a forward difference in y_j.
-                var original = y[j];
-                var epsilon = 1.4901161193847656e-8 * Math.Max(1.0, Math.Abs(original));
-                y[j] = original + epsilon;
-                system.Evaluate(end, y, shifted);
-                y[j] = original;
-                for (var i = 0; i < n; i++)
-                {
-                    matrix[(i * n) + j] = (i == j ? 1.0 : 0.0) - (h * (shifted[i] - f[i]) / epsilon);
-                }
-            }
-
-            for (var i = 0; i < n; i++)
-            {
-                delta[i] = -(y[i] - y0[i] - (h * f[i]));
-            }
-
-            if (!LuSolve(matrix, pivots, delta, n))
-            {
-                break;
-            }
-
-            update = 0.0;
-            for (var i = 0; i < n; i++)
-            {
-                y[i] += delta[i];
-                update = Math.Max(update, Math.Abs(delta[i]) / (1.0 + Math.Abs(y[i])));
-            }
-
-            iterations++;
-            if (update <= NewtonTolerance || !DoubleChecks.IsFinite(update))
-            {
-                break;
-            }
-        }
-
-        LastIterations = iterations;
-        LastResidual = update;
-        LastConverged = update <= NewtonTolerance;
-        y.AsSpan().CopyTo(next);
-    }
-
-    /// <summary>
-    /// Solves A x = b in place by Gaussian elimination with partial pivoting (A n x n row-major, overwritten by its LU
-    /// factors; b becomes x). False if a pivot's magnitude is at most <paramref name="smallestPivot"/> (0: singular).
-    /// </summary>
-    private static bool LuSolve(double[] a, int[] pivots, double[] b, int n, double smallestPivot = 0.0)
-    {
-        for (var col = 0; col < n; col++)
-        {
-            var pivot = col;
-            for (var row = col + 1; row < n; row++)
-            {
-                if (Math.Abs(a[(row * n) + col]) > Math.Abs(a[(pivot * n) + col]))
-                {
-                    pivot = row;
-                }
-            }
-
-            if (Math.Abs(a[(pivot * n) + col]) <= smallestPivot)
-            {
-                return false;
-            }
-
-            pivots[col] = pivot;
-            if (pivot != col)
-            {
-                for (var k = 0; k < n; k++)
-                {
-                    (a[(col * n) + k], a[(pivot * n) + k]) = (a[(pivot * n) + k], a[(col * n) + k]);
-                }
-
-                (b[col], b[pivot]) = (b[pivot], b[col]);
-            }
-
-            for (var row = col + 1; row < n; row++)
-            {
-                var factor = a[(row * n) + col] / a[(col * n) + col];
-                for (var k = col; k < n; k++)
-                {
-                    a[(row * n) + k] -= factor * a[(col * n) + k];
-                }
-
-                b[row] -= factor * b[col];
-            }
-        }
-
-        for (var row = n - 1; row >= 0; row--)
-        {
-            var sum = b[row];
-            for (var k = row + 1; k < n; k++)
-            {
-                sum -= a[(row * n) + k] * b[k];
-            }
-
-            b[row] = sum / a[(row * n) + row];
-        }
-
-        return true;
     }
 }
