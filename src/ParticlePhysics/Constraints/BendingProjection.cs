@@ -1,5 +1,6 @@
 using System;
 using ParticlePhysics.Numerics;
+using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics.Constraints;
 
@@ -23,7 +24,11 @@ public sealed class BendingProjection : IForceProjection
 {
     private const int Slots = 6;
     private const int Components = 3;
+
+    // Elements per chunk below which a runner is not worth waking.
+    private const int MinElementsPerChunk = 64;
     private readonly IBendingElements _bending;
+    private readonly ColourPass _pass = new();
     private int _topologyVersion = -1;
     private int _parameterVersion = -1;
     private int _particles = -1;
@@ -77,104 +82,166 @@ public sealed class BendingProjection : IForceProjection
 
         var x = context.Positions;
         var w = context.InverseMasses.ForReading();
-        Span<double> c = stackalloc double[3 * Components];
-        for (var e = 0; e < _stiffness.Length; e++)
+        if (context.Runner is not { MaxParallelism: > 1 } runner)
         {
-            var sh = _scaled[e];
-            if (sh == 0.0)
+            ProjectRange(0, _stiffness.Length, x, w);
+            return;
+        }
+
+        unsafe
+        {
+            // The spans hold the world's particles, and Refresh checked every slot against their count.
+            fixed (double* px = x, pw = w)
+            {
+                for (var k = 0; k + 1 < _colourStarts.Length; k++)
+                {
+                    // The elements of a colour share no particle: split over the runner, the same bits in any order.
+                    int begin = _colourStarts[k], end = _colourStarts[k + 1];
+                    var chunks = Math.Min(2 * runner.MaxParallelism, (end - begin) / MinElementsPerChunk);
+                    if (chunks > 1)
+                    {
+                        _pass.Set(this, begin, end, px, pw, x.Length, w.Length);
+                        runner.Run(_pass, chunks);
+                    }
+                    else
+                    {
+                        ProjectRange(begin, end, x, w);
+                    }
+                }
+            }
+        }
+    }
+
+    private unsafe void ProjectRange(int begin, int end, Span<double> x, Span<double> w)
+    {
+        // Every slot was checked against the particle count in Refresh, and x and w hold that many particles: no
+        // pointer below leaves its array. The nine components of c live in registers, not in a span.
+        fixed (double* px = x, pw = w, weights = _weights)
+        fixed (int* slots = _slots)
+        {
+            for (var e = begin; e < end; e++)
+            {
+                ProjectElement(slots + (Slots * e), weights + (Slots * Components * e), _scaled[e], px, pw);
+            }
+        }
+    }
+
+    private static unsafe void ProjectElement(int* slot, double* weight, double sh, double* x, double* w)
+    {
+        if (sh == 0.0)
+        {
+            return;
+        }
+
+        // B = sum_v w_v b_v b_v^T and c_k = sum_v b_kv x_v, each coordinate.
+        double b11 = 0, b12 = 0, b13 = 0, b22 = 0, b23 = 0, b33 = 0;
+        double c0 = 0, c1 = 0, c2 = 0, c3 = 0, c4 = 0, c5 = 0, c6 = 0, c7 = 0, c8 = 0;
+        var free = false;
+        for (var v = 0; v < Slots; v++)
+        {
+            var particle = slot[v];
+            if (particle < 0)
+            {
+                break;
+            }
+
+            double k1 = weight[v], k2 = weight[Slots + v], k3 = weight[(2 * Slots) + v];
+            var p = x + (3L * particle);
+            double px = p[0], py = p[1], pz = p[2];
+            c0 += k1 * px;
+            c1 += k1 * py;
+            c2 += k1 * pz;
+            c3 += k2 * px;
+            c4 += k2 * py;
+            c5 += k2 * pz;
+            c6 += k3 * px;
+            c7 += k3 * py;
+            c8 += k3 * pz;
+            var wv = w[particle];
+            if (wv != 0.0)
+            {
+                free = true;
+                b11 += wv * k1 * k1;
+                b12 += wv * k1 * k2;
+                b13 += wv * k1 * k3;
+                b22 += wv * k2 * k2;
+                b23 += wv * k2 * k3;
+                b33 += wv * k3 * k3;
+            }
+        }
+
+        if (!free)
+        {
+            return;
+        }
+
+        // M = s h^2 B + I, solved by its cofactors for the three coordinates.
+        double m11 = (sh * b11) + 1.0, m12 = sh * b12, m13 = sh * b13;
+        double m22 = (sh * b22) + 1.0, m23 = sh * b23, m33 = (sh * b33) + 1.0;
+        var k11 = (m22 * m33) - (m23 * m23);
+        var k12 = (m13 * m23) - (m12 * m33);
+        var k13 = (m12 * m23) - (m13 * m22);
+        var k22 = (m11 * m33) - (m13 * m13);
+        var k23 = (m12 * m13) - (m11 * m23);
+        var k33 = (m11 * m22) - (m12 * m12);
+        var det = (m11 * k11) + (m12 * k12) + (m13 * k13);
+        if (!(det >= 1.0) || det > double.MaxValue)
+        {
+            return; // s h^2 B beyond the finite numbers: leave the element as it is rather than write infinities
+        }
+
+        var scale = -sh / det;
+        double l0 = scale * ((k11 * c0) + (k12 * c3) + (k13 * c6)), l3 = scale * ((k12 * c0) + (k22 * c3) + (k23 * c6)), l6 = scale * ((k13 * c0) + (k23 * c3) + (k33 * c6));
+        double l1 = scale * ((k11 * c1) + (k12 * c4) + (k13 * c7)), l4 = scale * ((k12 * c1) + (k22 * c4) + (k23 * c7)), l7 = scale * ((k13 * c1) + (k23 * c4) + (k33 * c7));
+        double l2 = scale * ((k11 * c2) + (k12 * c5) + (k13 * c8)), l5 = scale * ((k12 * c2) + (k22 * c5) + (k23 * c8)), l8 = scale * ((k13 * c2) + (k23 * c5) + (k33 * c8));
+        for (var v = 0; v < Slots; v++)
+        {
+            var particle = slot[v];
+            if (particle < 0)
+            {
+                break;
+            }
+
+            var wv = w[particle];
+            if (wv == 0.0)
             {
                 continue;
             }
 
-            var slot = Slots * e;
-            var weight = Slots * Components * e;
+            double k1 = wv * weight[v], k2 = wv * weight[Slots + v], k3 = wv * weight[(2 * Slots) + v];
+            var p = x + (3L * particle);
+            p[0] += (k1 * l0) + (k2 * l3) + (k3 * l6);
+            p[1] += (k1 * l1) + (k2 * l4) + (k3 * l7);
+            p[2] += (k1 * l2) + (k2 * l5) + (k3 * l8);
+        }
+    }
 
-            // B = sum_v w_v b_v b_v^T and c_k = sum_v b_kv x_v, each coordinate.
-            double b11 = 0, b12 = 0, b13 = 0, b22 = 0, b23 = 0, b33 = 0;
-            c.Clear();
-            var free = false;
-            for (var v = 0; v < Slots; v++)
-            {
-                var particle = _slots[slot + v];
-                if (particle < 0)
-                {
-                    break;
-                }
+    /// <summary>One colour over the runner's chunks: each chunk projects a range of its elements.</summary>
+    private sealed unsafe class ColourPass : IParallelWork
+    {
+        private BendingProjection? _owner;
+        private double* _x;
+        private double* _w;
+        private int _coordinates;
+        private int _particles;
+        private int _begin;
+        private int _end;
 
-                double k1 = _weights[weight + v], k2 = _weights[weight + Slots + v], k3 = _weights[weight + (2 * Slots) + v];
-                var o = 3 * particle;
-                double px = x[o], py = x[o + 1], pz = x[o + 2];
-                c[0] += k1 * px;
-                c[1] += k1 * py;
-                c[2] += k1 * pz;
-                c[3] += k2 * px;
-                c[4] += k2 * py;
-                c[5] += k2 * pz;
-                c[6] += k3 * px;
-                c[7] += k3 * py;
-                c[8] += k3 * pz;
-                var wv = w[particle];
-                if (wv != 0.0)
-                {
-                    free = true;
-                    b11 += wv * k1 * k1;
-                    b12 += wv * k1 * k2;
-                    b13 += wv * k1 * k3;
-                    b22 += wv * k2 * k2;
-                    b23 += wv * k2 * k3;
-                    b33 += wv * k3 * k3;
-                }
-            }
+        public void Set(BendingProjection owner, int begin, int end, double* x, double* w, int coordinates, int particles)
+        {
+            _owner = owner;
+            _begin = begin;
+            _end = end;
+            _x = x;
+            _w = w;
+            _coordinates = coordinates;
+            _particles = particles;
+        }
 
-            if (!free)
-            {
-                continue;
-            }
-
-            // M = s h^2 B + I, solved by its cofactors for the three coordinates.
-            double m11 = (sh * b11) + 1.0, m12 = sh * b12, m13 = sh * b13;
-            double m22 = (sh * b22) + 1.0, m23 = sh * b23, m33 = (sh * b33) + 1.0;
-            var k11 = (m22 * m33) - (m23 * m23);
-            var k12 = (m13 * m23) - (m12 * m33);
-            var k13 = (m12 * m23) - (m13 * m22);
-            var k22 = (m11 * m33) - (m13 * m13);
-            var k23 = (m12 * m13) - (m11 * m23);
-            var k33 = (m11 * m22) - (m12 * m12);
-            var det = (m11 * k11) + (m12 * k12) + (m13 * k13);
-            if (!(det >= 1.0) || det > double.MaxValue)
-            {
-                continue; // s h^2 B beyond the finite numbers: leave the element as it is rather than write infinities
-            }
-
-            var scale = -sh / det;
-            for (var d = 0; d < 3; d++)
-            {
-                double r1 = c[d], r2 = c[3 + d], r3 = c[6 + d];
-                c[d] = scale * ((k11 * r1) + (k12 * r2) + (k13 * r3));
-                c[3 + d] = scale * ((k12 * r1) + (k22 * r2) + (k23 * r3));
-                c[6 + d] = scale * ((k13 * r1) + (k23 * r2) + (k33 * r3));
-            }
-
-            for (var v = 0; v < Slots; v++)
-            {
-                var particle = _slots[slot + v];
-                if (particle < 0)
-                {
-                    break;
-                }
-
-                var wv = w[particle];
-                if (wv == 0.0)
-                {
-                    continue;
-                }
-
-                double k1 = wv * _weights[weight + v], k2 = wv * _weights[weight + Slots + v], k3 = wv * _weights[weight + (2 * Slots) + v];
-                var o = 3 * particle;
-                x[o] += (k1 * c[0]) + (k2 * c[3]) + (k3 * c[6]);
-                x[o + 1] += (k1 * c[1]) + (k2 * c[4]) + (k3 * c[7]);
-                x[o + 2] += (k1 * c[2]) + (k2 * c[5]) + (k3 * c[8]);
-            }
+        public void Execute(int chunk, int chunkCount)
+        {
+            var (begin, end) = Chunk.Range(chunk, chunkCount, _end - _begin);
+            _owner!.ProjectRange(_begin + begin, _begin + end, new Span<double>(_x, _coordinates), new Span<double>(_w, _particles));
         }
     }
 

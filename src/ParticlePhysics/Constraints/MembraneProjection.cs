@@ -1,5 +1,6 @@
 using System;
 using ParticlePhysics.Numerics;
+using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics.Constraints;
 
@@ -28,7 +29,11 @@ namespace ParticlePhysics.Constraints;
 public sealed class MembraneProjection : IForceProjection
 {
     private const int Stride = 8;
+
+    // Triangles per chunk below which a runner is not worth waking.
+    private const int MinTrianglesPerChunk = 128;
     private readonly IMembraneElements _membrane;
+    private readonly ColourPass _pass = new();
     private int _topologyVersion = -1;
     private int _parameterVersion = -1;
     private int _particles = -1;
@@ -74,7 +79,39 @@ public sealed class MembraneProjection : IForceProjection
         var x = context.Positions;
         var x0 = context.StartPositions.ForReading();
         var w = context.InverseMasses.ForReading();
-        for (var t = 0; t < _triangles.Length; t++)
+        if (context.Runner is not { MaxParallelism: > 1 } runner)
+        {
+            ProjectRange(0, _triangles.Length, x, x0, w);
+            return;
+        }
+
+        unsafe
+        {
+            // The spans hold the world's particles, and Refresh checked every corner against their count.
+            fixed (double* px = x, px0 = x0, pw = w)
+            {
+                for (var c = 0; c + 1 < _colourStarts.Length; c++)
+                {
+                    // The triangles of a colour share no particle: split over the runner, the same bits in any order.
+                    int begin = _colourStarts[c], end = _colourStarts[c + 1];
+                    var chunks = Math.Min(2 * runner.MaxParallelism, (end - begin) / MinTrianglesPerChunk);
+                    if (chunks > 1)
+                    {
+                        _pass.Set(this, begin, end, px, px0, pw, x.Length, w.Length);
+                        runner.Run(_pass, chunks);
+                    }
+                    else
+                    {
+                        ProjectRange(begin, end, x, x0, w);
+                    }
+                }
+            }
+        }
+    }
+
+    private void ProjectRange(int begin, int end, Span<double> x, Span<double> x0, Span<double> w)
+    {
+        for (var t = begin; t < end; t++)
         {
             ProjectTriangle(ref _triangles[t], x, x0, w);
         }
@@ -231,6 +268,38 @@ public sealed class MembraneProjection : IForceProjection
         _particles = particles;
         _topologyVersion = topology;
         _parameterVersion = parameters;
+    }
+
+    /// <summary>One colour over the runner's chunks: each chunk projects a range of its triangles.</summary>
+    private sealed unsafe class ColourPass : IParallelWork
+    {
+        private MembraneProjection? _owner;
+        private double* _x;
+        private double* _x0;
+        private double* _w;
+        private int _coordinates;
+        private int _particles;
+        private int _begin;
+        private int _end;
+
+        public void Set(MembraneProjection owner, int begin, int end, double* x, double* x0, double* w, int coordinates, int particles)
+        {
+            _owner = owner;
+            _begin = begin;
+            _end = end;
+            _x = x;
+            _x0 = x0;
+            _w = w;
+            _coordinates = coordinates;
+            _particles = particles;
+        }
+
+        public void Execute(int chunk, int chunkCount)
+        {
+            var (begin, end) = Chunk.Range(chunk, chunkCount, _end - _begin);
+            _owner!.ProjectRange(
+                _begin + begin, _begin + end, new Span<double>(_x, _coordinates), new Span<double>(_x0, _coordinates), new Span<double>(_w, _particles));
+        }
     }
 
     /// <summary>A triangle as the projection reads it.</summary>
