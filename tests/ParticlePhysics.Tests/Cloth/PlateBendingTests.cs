@@ -108,6 +108,11 @@ public class PlateBendingTests
             Assert.InRange(Math.Log2(errors[0] / errors[1]), 1.8, 2.2);
             Assert.InRange(Math.Log2(errors[1] / errors[2]), 1.8, 2.2);
         }
+        else
+        {
+            // On the perturbed mesh the error is the perturbation's as much as the spacing's, but it still falls.
+            Assert.True(Math.Abs(errors[2]) < Math.Abs(errors[0]), $"the sag does not converge: {errors[0]:P2} at 10, {errors[2]:P2} at 40 segments");
+        }
     }
 
     [Fact]
