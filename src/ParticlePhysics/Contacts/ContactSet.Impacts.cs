@@ -154,11 +154,11 @@ public sealed partial class ContactSet
 
         for (var k = _pairsOfStart[i]; k < _pairsOfStart[i + 1]; k++)
         {
+            // A pair that rested at its last contact rests no longer once a bounce changed i's course: a ball hit in
+            // a row of touching balls must pass the blow on (Newton's cradle), not have it absorbed by the separation.
             var p = _pairsOf[k];
-            if (!_pairResting[p])
-            {
-                QueuePairImpact(in context, p, s, radii);
-            }
+            _pairResting[p] = false;
+            QueuePairImpact(in context, p, s, radii);
         }
     }
 

@@ -105,6 +105,7 @@ public sealed partial class ContactSet
         var first = _pairFirst.AsSpan(0, pairs);
         var second = _pairSecond.AsSpan(0, pairs);
         var touching = CollectObstacleContacts(in context, time);
+        CountContacts(touching);
         for (var pass = 0; pass < iterations; pass++)
         {
             var moved = 0.0;
@@ -329,11 +330,13 @@ public sealed partial class ContactSet
             }
         }
 
+        var started = BroadPhaseStart();
         if (!_restingGrid.TryFindPairs(_boxMin, _boxMax, n, PairFilter, _maxCandidatePairs))
         {
             RefuseCandidatePairs(n);
         }
 
+        BroadPhaseEnd(started, _restingGrid.PairCount);
         return _restingGrid.PairCount;
     }
 

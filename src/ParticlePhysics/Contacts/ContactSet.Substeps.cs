@@ -150,6 +150,7 @@ public sealed partial class ContactSet
         var v = context.Velocities;
         var inverseMasses = context.InverseMasses.ForReading();
         var h = context.Dt;
+        CountContacts(_substepCount);
         for (var c = 0; c < _substepCount; c++)
         {
             var k = _substepKind[c];

@@ -282,6 +282,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         ResolveImpacts(in context);
         ApplyRestingFriction(in context);
         Separate(in context, _projectionIterations);
+        CountContacts(_impactCount);
     }
 
     private void EnsureCapacity(int n)
@@ -326,10 +327,13 @@ public sealed partial class ContactSet : IStatefulConstraintSet
             }
         }
 
+        var started = BroadPhaseStart();
         if (!_sweptGrid.TryFindPairs(_boxMin, _boxMax, n, PairFilter, _maxCandidatePairs))
         {
             RefuseCandidatePairs(n);
         }
+
+        BroadPhaseEnd(started, _sweptGrid.PairCount);
 
         var first = _sweptGrid.First.ForReading();
         var second = _sweptGrid.Second.ForReading();

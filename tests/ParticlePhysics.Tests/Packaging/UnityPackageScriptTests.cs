@@ -20,6 +20,8 @@ public class UnityPackageScriptTests
         "Runtime.meta",
         "Runtime/ParticlePhysics.dll", "Runtime/ParticlePhysics.dll.meta",
         "Runtime/ParticlePhysics.xml", "Runtime/ParticlePhysics.xml.meta",
+        "Runtime/ParticlePhysics.Scenes.dll", "Runtime/ParticlePhysics.Scenes.dll.meta",
+        "Runtime/ParticlePhysics.Scenes.xml", "Runtime/ParticlePhysics.Scenes.xml.meta",
         "Samples~/Cloth/SimulatedCloth.cs", "Samples~/Cloth/SimulatedCloth.cs.meta",
         "Samples~/MeshCloth/MeshCloth.cs", "Samples~/MeshCloth/MeshCloth.cs.meta",
         "package.json", "package.json.meta",
@@ -79,6 +81,9 @@ public class UnityPackageScriptTests
             Assert.Contains("      Any:\n    second:\n      enabled: 1", pluginMeta, StringComparison.Ordinal);
             Assert.Contains("folderAsset: yes", File.ReadAllText(Path.Combine(package, "Runtime.meta")), StringComparison.Ordinal);
             Assert.Equal(File.ReadAllBytes(dll), File.ReadAllBytes(Path.Combine(package, "Runtime/ParticlePhysics.dll")));
+            var scenes = typeof(ParticlePhysics.Scenes.Scene).Assembly.Location;
+            Assert.Equal(File.ReadAllBytes(scenes), File.ReadAllBytes(Path.Combine(package, "Runtime/ParticlePhysics.Scenes.dll")));
+            Assert.Contains("PluginImporter:", File.ReadAllText(Path.Combine(package, "Runtime/ParticlePhysics.Scenes.dll.meta")), StringComparison.Ordinal);
         }
         finally
         {
