@@ -35,6 +35,10 @@ SAMPLES = [
     ("Cloth", ROOT / "samples" / "unity" / "Cloth", "Simulated cloth",
      "A MonoBehaviour that hangs a cloth from two corners, steps it at 60 Hz with implicit Euler out of Update and "
      "draws it through a MeshFilter, interpolated, without allocating per frame; save and restore included."),
+    ("MeshCloth", ROOT / "samples" / "unity" / "MeshCloth", "Mesh cloth",
+     "A MonoBehaviour that turns the MeshFilter's mesh into a cloth of physical membrane and bending: welds its UV "
+     "seams, pins the vertices painted red (or listed), attaches them to a transform, and writes positions and normals "
+     "back each frame without allocating."),
 ]
 
 DESCRIPTION = (
