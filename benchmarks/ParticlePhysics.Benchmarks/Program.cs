@@ -23,11 +23,11 @@ namespace ParticlePhysics.Benchmarks;
 /// RK4 cloth steps (or xpbd or implicit-Euler frames) in a loop, for <c>perf record</c> or callgrind
 /// (with <c>--runner</c>, <see cref="RunnerChoice"/>'s options choose the runner; <c>--per-frame</c> prints the
 /// implicit solve's iterations of each frame of the first simulated second).</item>
-/// <item><c>xpbd [--sizes 32,64,128,256] [--rounds 7] [--cores [--previous-runner | --spin-us N]]</c>: a short
+/// <item><c>xpbd [--sizes 32,64,128,256] [--rounds 7] [--cores [--spin-us N]]</c>: a short
 /// side-by-side timing of the C xpbd and the library in one process, alternating (or, with <c>--cores</c>, one core
 /// against two), after a bit-for-bit check (<see cref="XpbdComparison"/>).</item>
 /// <item><c>runner [--parallelism 2] [--rounds 5] [--ms 150] [--spin-us N] [--engine xpbd|implicit-euler [--n 64]]</c>: the cost
-/// of a hand-off alone (or in the engine), one core against the previous and the current runner, alternating
+/// of a hand-off alone (or in the engine), one core against the runner that never spins and the runner as shipped, alternating
 /// (<see cref="RunnerHandOffs"/>).</item>
 /// <item><c>quality [--n 64]</c>: each solver's cloth after 5 s against RK4 at a small dt: lowest point, stretch of
 /// the structural springs (<see cref="ClothQuality"/>; deterministic, no timing).</item>
@@ -36,8 +36,6 @@ namespace ParticlePhysics.Benchmarks;
 /// <item><c>contacts [--sizes 1000,10000,100000] [--resolves 5] [--state DIR]</c>: the contact stage on settled piles,
 /// outside BenchmarkDotNet: what each pile holds, a checksum of the result, the fastest resolve; for callgrind
 /// (<see cref="ContactCosts"/>).</item>
-/// <item><c>preconditioners [--n 32] [--frames 30] [--omega 0.6]</c>: conjugate-gradient iterations on one real
-/// implicit-Euler step of the cloth with candidate preconditioners (<see cref="PreconditionerLab"/>; slow, no timing).</item>
 /// <item><c>--quick</c> (before BenchmarkDotNet's arguments): small cloths, for CI.</item>
 /// </list>
 /// After a BenchmarkDotNet run it exits 1 if any benchmark failed or has no result (NA).
@@ -46,11 +44,6 @@ internal static class Program
 {
     private static int Main(string[] args)
     {
-        if (args.Length > 0 && args[0] == "preconditioners")
-        {
-            return PreconditionerLab.Run(args[1..]);
-        }
-
         if (args.Length > 0 && args[0] == "verify")
         {
             return Verification.Run();
@@ -103,7 +96,7 @@ internal static class Program
         if (quick)
         {
             // CI: a filter that silently matches nothing must not pass.
-            foreach (var type in new[] { typeof(ClothStepBenchmarks), typeof(IntegratorBenchmarks), typeof(ComparisonBenchmarks), typeof(SpringKernelBenchmarks), typeof(PackedStepBenchmarks), typeof(ContactBenchmarks), typeof(XpbdBenchmarks), typeof(XpbdParallelBenchmarks) })
+            foreach (var type in new[] { typeof(ClothStepBenchmarks), typeof(IntegratorBenchmarks), typeof(ComparisonBenchmarks), typeof(ImplicitEulerBenchmarks), typeof(ParallelBenchmarks), typeof(ContactBenchmarks), typeof(XpbdBenchmarks), typeof(XpbdParallelBenchmarks) })
             {
                 if (!summaries.Any(s => s.BenchmarksCases.Any(c => c.Descriptor.Type == type)))
                 {
