@@ -9,7 +9,8 @@
 // stable step from stable-time-steps.csv (the benchmarks' stability mode). A round times one simulated second from rest
 // (60 frames: the cloth falls and swings, implicit Euler's hardest frames) of every integrator on one thread and on
 // WorkerThreadRunner(2), in turn, so that all see the same load; the program prints the fastest and the median round
-// per frame. The two-thread run must give the one-thread bits (checked), and prints a hash of them, which run.sh
+// per frame in wall time, and for one thread also the fastest in the thread's CPU time, which leaves out the waits
+// for a core that a loaded machine adds to the wall time. The two-thread run must give the one-thread bits (checked), and prints a hash of them, which run.sh
 // compares across the runtimes.
 //
 // C# 7.2 at most (mcs -langversion:7.2): no nullable annotations, no file-scoped namespace, no switch expressions.
@@ -81,13 +82,15 @@ namespace ParticlePhysics.FrameCost
                 foreach (var run in runs)
                 {
                     run.Second(); // warm-up: the runtime compiles, the solvers size their buffers
+                    run.Times.Clear();
+                    run.CpuTimes.Clear();
                 }
 
                 for (var round = 0; round < rounds; round++)
                 {
                     foreach (var run in runs)
                     {
-                        run.Times.Add(run.Second());
+                        run.Second();
                     }
                 }
 
@@ -103,16 +106,19 @@ namespace ParticlePhysics.FrameCost
 
                     foreach (var run in new[] { one, two })
                     {
-                        // frame <case> <threads> <fastest ms> <median ms> <steps per frame> <dt>
+                        // frame <case> <threads> <fastest ms> <median ms> <steps per frame> <dt> <fastest CPU ms>
+                        // (wall times; the CPU time is the timing thread's, -1 on two threads or where it cannot be read)
+                        var cpu = run.Threads == 1 ? Min(run.CpuTimes) : -1;
                         Console.WriteLine(string.Format(
                             CultureInfo.InvariantCulture,
-                            "frame {0} {1} {2:F3} {3:F3} {4} {5:R}",
+                            "frame {0} {1} {2:F3} {3:F3} {4} {5:R} {6:F3}",
                             run.Case.Label,
                             run.Threads,
                             Min(run.Times) / FramesPerRound,
                             Median(run.Times) / FramesPerRound,
                             run.Case.StepsPerFrame,
-                            Frame / run.Case.StepsPerFrame));
+                            Frame / run.Case.StepsPerFrame,
+                            cpu < 0 ? -1 : cpu / FramesPerRound));
                     }
 
                     Console.WriteLine("hash " + one.Case.Label + " " + one.StateHash.ToString("x16", CultureInfo.InvariantCulture));
@@ -270,6 +276,7 @@ namespace ParticlePhysics.FrameCost
             }
 
             Times = new List<double>();
+            CpuTimes = new List<double>();
             IterationsPerFrame = -1;
         }
 
@@ -280,14 +287,17 @@ namespace ParticlePhysics.FrameCost
         /// <summary>The wall time of each timed second, in milliseconds.</summary>
         public List<double> Times { get; }
 
+        /// <summary>The calling thread's CPU time of each timed second, in milliseconds (-1 where it cannot be read).</summary>
+        public List<double> CpuTimes { get; }
+
         /// <summary>FNV-1a of the raw bits of the state after the last second.</summary>
         public ulong StateHash { get; private set; }
 
         /// <summary>Implicit Euler's conjugate-gradient iterations per frame in the last second (-1 for the others).</summary>
         public double IterationsPerFrame { get; private set; }
 
-        /// <summary>One simulated second from rest (60 frames); the wall time in milliseconds.</summary>
-        public double Second()
+        /// <summary>One simulated second from rest (60 frames); adds its wall and CPU times to <see cref="Times"/> and <see cref="CpuTimes"/>.</summary>
+        public void Second()
         {
             _world.SetState(_initial);
             _world.Time = 0;
@@ -299,6 +309,7 @@ namespace ParticlePhysics.FrameCost
             var implicitEuler = _integrator as ImplicitEuler;
             long iterations = 0;
             var dt = Frame / Case.StepsPerFrame;
+            var cpuStart = ThreadCpu.Milliseconds();
             var clock = Stopwatch.StartNew();
             for (var frame = 0; frame < FramesPerRound; frame++)
             {
@@ -314,6 +325,7 @@ namespace ParticlePhysics.FrameCost
             }
 
             var milliseconds = clock.Elapsed.TotalMilliseconds;
+            var cpuEnd = ThreadCpu.Milliseconds();
             if (implicitEuler != null)
             {
                 IterationsPerFrame = (double)iterations / FramesPerRound;
@@ -330,7 +342,66 @@ namespace ParticlePhysics.FrameCost
             }
 
             StateHash = hash;
-            return milliseconds;
+            Times.Add(milliseconds);
+            CpuTimes.Add(cpuStart < 0 || cpuEnd < 0 ? -1 : cpuEnd - cpuStart);
+        }
+    }
+
+    /// <summary>
+    /// The calling thread's CPU time (getrusage RUSAGE_THREAD on Linux, microseconds), which leaves out the time the thread
+    /// waited for a core; -1 where it cannot be read.
+    /// </summary>
+    internal static class ThreadCpu
+    {
+        private const int RusageThread = 1;
+
+        public static double Milliseconds()
+        {
+            try
+            {
+                ResourceUsage usage;
+                if (getrusage(RusageThread, out usage) != 0)
+                {
+                    return -1;
+                }
+
+                return ((usage.UserSeconds + usage.SystemSeconds) * 1000.0) + ((usage.UserMicroseconds + usage.SystemMicroseconds) / 1000.0);
+            }
+            catch (DllNotFoundException)
+            {
+                return -1;
+            }
+            catch (EntryPointNotFoundException)
+            {
+                return -1;
+            }
+        }
+
+        [DllImport("libc", SetLastError = true)]
+        private static extern int getrusage(int who, out ResourceUsage usage);
+
+        // struct rusage on 64-bit Linux: two struct timeval (ru_utime, ru_stime), then 14 longs.
+        [StructLayout(LayoutKind.Sequential)]
+        private struct ResourceUsage
+        {
+            public long UserSeconds;
+            public long UserMicroseconds;
+            public long SystemSeconds;
+            public long SystemMicroseconds;
+            public long MaxResidentSetSize;
+            public long SharedMemory;
+            public long UnsharedData;
+            public long UnsharedStack;
+            public long MinorFaults;
+            public long MajorFaults;
+            public long Swaps;
+            public long BlocksIn;
+            public long BlocksOut;
+            public long MessagesSent;
+            public long MessagesReceived;
+            public long Signals;
+            public long VoluntarySwitches;
+            public long InvoluntarySwitches;
         }
     }
 }

@@ -70,17 +70,19 @@ awk -v n="$n" '
   $1 == "frame" {
     side = (FNR == NR) ? "clr" : "mono"
     cell[side, $2, $3] = sprintf("%.2f (%.2f)", $4, $5)
+    if ($3 == 1) cpu[side, $2] = ($8 < 0) ? "-" : sprintf("%.2f", $8)
     if (!($2 in seen)) { seen[$2] = 1; order[++count] = $2; steps[$2] = $6; dt[$2] = $7 }
   }
   END {
-    printf "| integrator (%d x %d cloth) | steps per frame (dt) | .NET, 1 thread | .NET, 2 threads | Mono, 1 thread | Mono, 2 threads |\n", n, n
-    print "| --- | ---: | ---: | ---: | ---: | ---: |"
+    printf "| integrator (%d x %d cloth) | steps per frame (dt) | .NET, 1 thread | .NET, 2 threads | Mono, 1 thread | Mono, 2 threads | 1 thread, CPU: .NET / Mono |\n", n, n
+    print "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"
     for (i = 1; i <= count; i++) {
       c = order[i]
       s = (c == "rk45") ? "1 call (adaptive)" : sprintf("%d (%.3f ms)", steps[c], dt[c] * 1000)
-      printf "| %s | %s | %s | %s | %s | %s |\n", name(c), s, cell["clr", c, 1], cell["clr", c, 2], cell["mono", c, 1], cell["mono", c, 2]
+      printf "| %s | %s | %s | %s | %s | %s | %s / %s |\n", name(c), s, cell["clr", c, 1], cell["clr", c, 2], cell["mono", c, 1], cell["mono", c, 2], cpu["clr", c], cpu["mono", c]
     }
   }' "$work/clr.txt" "$work/mono.txt"
 echo
-echo "Milliseconds of wall time per 60 Hz frame (1/60 s of simulated time): the fastest of $rounds rounds (the median in"
-echo "brackets), each round one simulated second from rest; a frame at 60 fps has 16.7 ms for everything."
+echo "Milliseconds per 60 Hz frame (1/60 s of simulated time), each round one simulated second from rest: wall time, the"
+echo "fastest of $rounds rounds (the median in brackets); last column, the one-thread runs' fastest in the CPU time of the"
+echo "timing thread, which leaves out waiting for a core on a loaded machine. At 60 fps a frame has 16.7 ms for everything."
