@@ -36,6 +36,8 @@ namespace ParticlePhysics.Benchmarks;
 /// <item><c>contacts [--sizes 1000,10000,100000] [--resolves 5] [--state DIR]</c>: the contact stage on settled piles,
 /// outside BenchmarkDotNet: what each pile holds, a checksum of the result, the fastest resolve; for callgrind
 /// (<see cref="ContactCosts"/>).</item>
+/// <item><c>obj [--vertices 1000000] [--rounds 7]</c>: the OBJ reader's throughput in MB/s on a generated mesh
+/// (<see cref="ObjThroughput"/>).</item>
 /// <item><c>--quick</c> (before BenchmarkDotNet's arguments): small cloths, for CI.</item>
 /// </list>
 /// After a BenchmarkDotNet run it exits 1 if any benchmark failed or has no result (NA).
@@ -44,6 +46,11 @@ internal static class Program
 {
     private static int Main(string[] args)
     {
+        if (args.Length > 0 && args[0] == "obj")
+        {
+            return ObjThroughput.Run(args[1..]);
+        }
+
         if (args.Length > 0 && args[0] == "verify")
         {
             return Verification.Run();

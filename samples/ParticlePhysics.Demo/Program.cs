@@ -74,6 +74,11 @@ internal static class Program
         {
             return Fail(output, error, exception.Message);
         }
+        catch (Scenes.SceneException exception)
+        {
+            // A scene file that cannot be used: its one line names the file, the JSON path, the line and the column.
+            return Fail(output, error, exception.Message);
+        }
         catch (ArgumentException exception)
         {
             // The core's checks (a value the demo's own checks let through): keep its first sentence, drop the parameter suffix.

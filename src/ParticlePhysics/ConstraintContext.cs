@@ -62,6 +62,37 @@ public readonly ref struct ConstraintContext
         ReadOnlySpan<double> inverseMasses,
         ReadOnlySpan<double> radii,
         IParallelRunner? runner = null)
+        : this(time, dt, startPositions, startVelocities, positions, velocities, masses, inverseMasses, radii, runner, kickDrift: false)
+    {
+    }
+
+    /// <summary>Creates a context that says how the end state was reached; the world does this.</summary>
+    /// <param name="time">The time at the start of the interval, in seconds.</param>
+    /// <param name="dt">The length of the interval, in seconds.</param>
+    /// <param name="startPositions">The positions at the start, 3 values per particle.</param>
+    /// <param name="startVelocities">The velocities at the start, 3 values per particle.</param>
+    /// <param name="positions">The positions at the end, 3 values per particle, to correct in place.</param>
+    /// <param name="velocities">The velocities at the end, 3 values per particle, to correct in place.</param>
+    /// <param name="masses">The masses, one per particle.</param>
+    /// <param name="inverseMasses">The inverse masses, one per particle: 0 for a pinned particle.</param>
+    /// <param name="radii">The radii, one per particle, or empty (all points).</param>
+    /// <param name="runner">The runner a set may split its work over, or null.</param>
+    /// <param name="kickDrift">
+    /// Whether the end state came from one kick and one drift over the interval (<see cref="IKickDriftIntegrator"/>):
+    /// see <see cref="KickDrift"/>.
+    /// </param>
+    public ConstraintContext(
+        double time,
+        double dt,
+        ReadOnlySpan<double> startPositions,
+        ReadOnlySpan<double> startVelocities,
+        Span<double> positions,
+        Span<double> velocities,
+        ReadOnlySpan<double> masses,
+        ReadOnlySpan<double> inverseMasses,
+        ReadOnlySpan<double> radii,
+        IParallelRunner? runner,
+        bool kickDrift)
     {
         var n = 3 * masses.Length;
         if (startPositions.Length != n || startVelocities.Length != n || positions.Length != n || velocities.Length != n
@@ -74,6 +105,7 @@ public readonly ref struct ConstraintContext
         Time = time;
         Dt = dt;
         Runner = runner;
+        KickDrift = kickDrift;
         StartPositions = startPositions;
         StartVelocities = startVelocities;
         Positions = positions;
@@ -94,6 +126,15 @@ public readonly ref struct ConstraintContext
     /// Chunks of one call must touch disjoint data, so that the result does not depend on the runner.
     /// </summary>
     public IParallelRunner? Runner { get; }
+
+    /// <summary>
+    /// True when the end state came from one kick and one drift over the whole interval, v1 = v0 + dt a(x0, v0) and
+    /// x1 = x0 + dt v1 (the world's step with an <see cref="IKickDriftIntegrator"/>: semi-implicit Euler). A set that
+    /// moves an end position by dx may then change that particle's end velocity by dx / dt, which keeps the end state a
+    /// kick and a drift: the correction becomes part of the kick's impulse. False after any other integrator and in
+    /// xpbd's substeps.
+    /// </summary>
+    public bool KickDrift { get; }
 
     /// <summary>The number of particles.</summary>
     public int Count => Masses.Length;

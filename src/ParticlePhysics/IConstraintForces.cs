@@ -13,7 +13,10 @@ namespace ParticlePhysics;
 /// The world calls it from <see cref="ParticleWorld.AccumulateForces"/> (and so from every evaluation and
 /// acceleration), in the order the sets were added, but never from the position-based integrator's predictions,
 /// which leave such constraints to <see cref="IConstraintSet.Project"/>. It must not allocate and must be
-/// deterministic.
+/// deterministic. A set that also implements <see cref="IForceJacobian"/> enters the implicit step's linearisation
+/// (<see cref="ILinearizableSystem"/>) after the generators: the world calls its <see cref="IForceJacobian.Linearize"/>
+/// right after its <see cref="AddConstraintForces"/> at the same state, so it may linearise the multipliers it has just
+/// solved for (the rods give the geometric stiffness of their tensions).
 /// </remarks>
 public interface IConstraintForces
 {

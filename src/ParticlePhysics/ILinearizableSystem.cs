@@ -6,7 +6,8 @@ namespace ParticlePhysics;
 /// <summary>
 /// What an implicit stepper needs of a mechanical system beyond its accelerations: the masses, the forces at a state,
 /// and their linearisation there, J = a df/dx + b df/dv, as matrix-free products and 3 x 3 diagonal blocks.
-/// <see cref="ParticleWorld"/> implements it over its force generators, so that the stepper never sees forces.
+/// <see cref="ParticleWorld"/> implements it over its force generators (and the constraint sets that act through forces
+/// and linearise them: <see cref="IConstraintForces"/>), so that the stepper never sees forces.
 /// </summary>
 /// <remarks>
 /// The stepper calls <see cref="Linearize"/> once per step, then any number of <see cref="AddJacobianProduct"/> and

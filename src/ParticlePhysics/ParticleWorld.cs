@@ -62,6 +62,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
     private int _frameDepth; // open FixedTimestepDriver frames: their steps leave the constraint sets' bracket to them
     private double _time;
     private double _divergenceLimit = DefaultDivergenceLimit;
+    private IParallelRunner? _runner;
 
     /// <summary>Creates an empty particle system.</summary>
     /// <param name="capacity">How many particles to make room for up front (optional).</param>
@@ -91,9 +92,18 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
     /// <summary>
     /// The runner over which force generators may split large evaluations (a spring network of thousands of
     /// springs), or null (the default) to compute everything on the calling thread. Results are bit-identical either
-    /// way. The system does not own the runner: dispose a <see cref="WorkerThreadRunner"/> yourself.
+    /// way. The system does not own the runner: dispose a <see cref="WorkerThreadRunner"/> yourself. Set it between
+    /// steps: like every change to the world, setting it from inside the world's own step throws.
     /// </summary>
-    public IParallelRunner? Runner { get; set; }
+    public IParallelRunner? Runner
+    {
+        get => _runner;
+        set
+        {
+            ThrowIfStepping();
+            _runner = value;
+        }
+    }
 
     /// <summary>
     /// The largest magnitude a velocity component may reach, in m/s: a step that produces a faster particle, or any
@@ -112,6 +122,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
         get => _divergenceLimit;
         set
         {
+            ThrowIfStepping();
             Guard.PositiveFinite(value, nameof(DivergenceLimit));
             _divergenceLimit = value;
         }
@@ -255,6 +266,10 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
     /// Call it once per frame with the anchor's next position.
     /// </summary>
     /// <exception cref="InvalidOperationException">The particle is not pinned (forces move a free particle).</exception>
+    /// <exception cref="ArgumentOutOfRangeException">
+    /// The target is not finite, or so far that target - x overflows; the duration is not positive and finite, or so
+    /// short that the velocity overflows. Nothing is changed.
+    /// </exception>
     public void MoveKinematic(int index, Vector3d target, double duration)
     {
         ThrowIfStepping();
@@ -267,9 +282,46 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
                 $"Particle {index} is not pinned: forces move it. Pin it to drive it along a path.");
         }
 
-        var velocity = (target - GetPosition(index)) * (1.0 / duration);
-        Guard.Finite(velocity, nameof(target));
-        WriteVelocity(index, velocity);
+        WriteVelocity(index, KinematicVelocity(index, target, duration, nameof(target)));
+    }
+
+    /// <summary>
+    /// The velocity (target - x) / duration that takes particle <paramref name="index"/> to <paramref name="target"/>
+    /// in <paramref name="duration"/> seconds (both finite, the duration positive), or an exception that names what is
+    /// out of range. The difference comes first, so a particle already there gets 0 at any duration; it is scaled by
+    /// 1 / duration (the bits of every run before), and divided instead where that is not finite: below
+    /// 1 / double.MaxValue (about 5.6e-309 s) the inverse overflows, and 0 times it was NaN. A target too far names
+    /// <paramref name="targetName"/>, the parameter the caller's target came from.
+    /// </summary>
+    internal Vector3d KinematicVelocity(int index, Vector3d target, double duration, string targetName)
+    {
+        var position = GetPosition(index);
+        var difference = target - position;
+        if (!difference.IsFinite)
+        {
+            throw new ArgumentOutOfRangeException(
+                targetName,
+                target,
+                $"The target {target} is so far from particle {index} at {position} that target - x overflows; "
+                + "move it in smaller steps.");
+        }
+
+        var velocity = difference * (1.0 / duration);
+        if (!velocity.IsFinite)
+        {
+            velocity = difference / duration;
+        }
+
+        if (!velocity.IsFinite)
+        {
+            throw new ArgumentOutOfRangeException(
+                nameof(duration),
+                duration,
+                $"duration {Guard.Format(duration)} s is too short to move particle {index} by {difference}: the "
+                + "velocity (target - x) / duration overflows. Give the move a longer duration.");
+        }
+
+        return velocity;
     }
 
     /// <summary>The mass of a particle, in kilograms.</summary>
@@ -430,6 +482,10 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
         if (constraints is IConstraintForces forces)
         {
             _constraintForces.Add(forces);
+            if (constraints is IForceJacobian)
+            {
+                _structureVersion++; // it enters J: a product needs a Linearize that saw it
+            }
         }
 
         _unprojectedStale = true;
@@ -447,6 +503,12 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
         if (constraints is IConstraintForces forces)
         {
             _ = _constraintForces.Remove(forces);
+            if (constraints is IForceJacobian)
+            {
+                _linearized.Clear(); // as for a removed generator: no later product may reach it
+                _linearizedSource.Clear();
+                _structureVersion++;
+            }
         }
 
         _unprojectedStale = true;
@@ -470,8 +532,14 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
     /// The step produced a value that is not finite, or a velocity beyond <see cref="DivergenceLimit"/>; the system
     /// stays at its last good state and time.
     /// </exception>
+    /// <exception cref="InvalidOperationException">
+    /// Called from inside this world's own step (a force, a pair filter or a constraint set stepping the world it
+    /// belongs to): the nested step would swap the buffers the outer one is writing into. The outer step then fails,
+    /// and the world is left as it was.
+    /// </exception>
     public void Step(IIntegrator integrator, double dt)
     {
+        ThrowIfStepping();
         Guard.NotNull(integrator, nameof(integrator));
         Guard.PositiveFinite(dt, nameof(dt));
         Guard.FiniteEndTime(_time, dt);
@@ -497,7 +565,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
             integrator.Step(this, _time, current, _next, dt);
             if (integrator is not IPositionBasedIntegrator)
             {
-                ResolveConstraints(current, dt);
+                ResolveConstraints(current, dt, integrator is IKickDriftIntegrator);
             }
 
             _stepping = false;
@@ -619,8 +687,11 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
             _time + dt, _time, velocity ? n + bad : bad, particle, value, _divergenceLimit, cause);
     }
 
-    /// <summary>The constraint stage after a force-based step: every set corrects the end state in the scratch buffer.</summary>
-    private void ResolveConstraints(Span<double> start, double dt)
+    /// <summary>
+    /// The constraint stage after a force-based step: every set corrects the end state in the scratch buffer, told
+    /// whether the step was a kick and a drift (<see cref="ConstraintContext.KickDrift"/>).
+    /// </summary>
+    private void ResolveConstraints(Span<double> start, double dt, bool kickDrift)
     {
         if (_constraintSets.Count == 0)
         {
@@ -630,7 +701,7 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
         var n = 3 * _count;
         var end = _next.AsSpan(0, 2 * n);
         var context = new ConstraintContext(
-            _time, dt, start.Slice(0, n), start.Slice(n, n), end.Slice(0, n), end.Slice(n, n), Masses, InverseMasses, Radii, Runner);
+            _time, dt, start.Slice(0, n), start.Slice(n, n), end.Slice(0, n), end.Slice(n, n), Masses, InverseMasses, Radii, Runner, kickDrift);
         for (var c = 0; c < _constraintSets.Count; c++)
         {
             _constraintSets[c].Resolve(in context);
@@ -841,6 +912,12 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
     {
         CheckLinearization(positions.Length, velocities.Length, positionJacobianTimesVelocity.Length);
         CollectLinearized(userForces);
+        if (_linearized.Count > 0 && _linearizedSource[_linearized.Count - 1] >= _forceGenerators.Count)
+        {
+            // A constraint set linearises the multipliers of its last forces: evaluate them at this state first.
+            _ = AccumulateForces(time, positions, velocities);
+        }
+
         var view = new ParticleState(time, positions, velocities, Masses, InverseMasses, Runner);
         for (var j = 0; j < _linearized.Count; j++)
         {
@@ -902,6 +979,13 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
         for (var c = 0; c < _constraintForces.Count; c++)
         {
             _constraintForces[c].AddConstraintForces(in view, forces);
+            if (next < _linearized.Count && _linearizedSource[next] == _forceGenerators.Count + c)
+            {
+                // Right after its forces at this state: a constraint set linearises the multipliers it just solved for.
+                var jacobian = _linearized[next++];
+                jacobian.Linearize(view, positionScale, velocityScale, positionJacobianTimesVelocity);
+                jacobian.AddDiagonalBlocks(diagonalBlocks);
+            }
         }
 
         _linearizedVersion = _structureVersion;
@@ -922,7 +1006,8 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
 
     /// <summary>
     /// The generators that enter J, in the order they were added: those that implement <see cref="IForceJacobian"/>,
-    /// and the others wrapped in finite differences when <paramref name="userForces"/> asks for it.
+    /// and the others wrapped in finite differences when <paramref name="userForces"/> asks for it; then the constraint
+    /// sets that act through forces (<see cref="IConstraintForces"/>) and implement <see cref="IForceJacobian"/>.
     /// </summary>
     private void CollectLinearized(UserForceTreatment userForces)
     {
@@ -947,6 +1032,17 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
 
                 _linearized.Add(wrapper);
                 _linearizedSource.Add(g);
+            }
+        }
+
+        // Then the constraint sets that act through forces and linearise them (rods: their tensions' geometric
+        // stiffness), numbered after the generators.
+        for (var c = 0; c < _constraintForces.Count; c++)
+        {
+            if (_constraintForces[c] is IForceJacobian jacobian)
+            {
+                _linearized.Add(jacobian);
+                _linearizedSource.Add(_forceGenerators.Count + c);
             }
         }
     }
@@ -1186,14 +1282,17 @@ public sealed class ParticleWorld : ILinearizableSystem, IPositionBasedSystem, I
         }
     }
 
-    /// <summary>Throws when called from inside this world's own step (by a force generator or a constraint set).</summary>
+    /// <summary>
+    /// Throws when called from inside this world's own step (by a force generator, a pair filter or a constraint set):
+    /// every change to the world, a nested step of it, and its driver's frames and resets.
+    /// </summary>
     internal void ThrowIfStepping()
     {
         if (_stepping)
         {
             throw new InvalidOperationException(
-                "The world cannot be changed during its own step (by a force generator or a constraint set): "
-                + "a step either commits whole or leaves the world as it was.");
+                "The world cannot be changed or stepped during its own step (from a force generator, a pair filter or "
+                + "a constraint set): a step either commits whole or leaves the world as it was.");
         }
     }
 

@@ -13,7 +13,9 @@
 //     a still one stays put and a moving one moves (with everything else hidden, two times give the same picture,
 //     or not).
 // A last page, the cloth's with radii, rods, cables, anchors and one collider of each kind (the box moving) written
-// into its scene, checks the drawing of what no scenario has all of.
+// into its scene, checks the drawing of what no scenario has all of; and the pages of three sample scenes (the
+// scene command), the playground among them with every object and collider kind of the scene format, loads too.
+// Every page must start playing when it opens.
 // Run: npm ci && node --test replay.test.mjs (the demo built in Release first: dotnet build -c Release).
 // DEMO_DLL overrides the demo's path, CHROMIUM the browser's, REPLAY_SCREENSHOTS names a folder for a PNG per page.
 import { after, before, describe, it } from "node:test";
@@ -46,7 +48,7 @@ function scenarios() {
   const help = execFileSync("dotnet", [demo, "--help"], { encoding: "utf8" });
   const commands = help.slice(help.indexOf("Commands:")).split("\n").slice(1)
     .map((line) => /^\s{2}([a-z][a-z0-9-]*)\s/.exec(line)).filter(Boolean).map((m) => m[1]);
-  return commands.filter((name) => name !== "convergence");
+  return commands.filter((name) => name !== "convergence" && name !== "scene");
 }
 
 // What each scenario's page must hold (a subset of window.replay.scene), from the contract's description of it.
@@ -62,11 +64,20 @@ const expected = {
   "drape": { colliders: ["sphere"], largestRadius: 0.01, pinned: 0, triangles: 2 * 10 * 10 },
 };
 
+// Sample scenes, run by the scene command: the playground holds every object and collider kind of the scene format.
+const scenes = resolve(here, "../../samples/scenes");
+const sceneCases = {
+  "scene-playground": { file: "playground.json", scene: { colliders: ["plane", "sphere", "capsule", "box (moving)"], pinned: 3, springs: 1, rods: 2, cables: 1, loads: 1, largestRadius: 0.1 } },
+  "scene-newtons-cradle": { file: "newtons-cradle.json", scene: { colliders: [], pinned: 5, rods: 5, largestRadius: 0.05 } },
+  "scene-rope-bridge": { file: "rope-bridge.json", scene: { colliders: [], pinned: 4, cables: 40, rods: 19, springs: 40, loads: 2 } },
+};
+
 // Each case's page is written up front, so that a scenario the demo refuses (a plain ODE) gets its own one test.
 if (!existsSync(demo)) throw new Error(`the demo is not built at ${demo}: run dotnet build -c Release first`);
 const cases = scenarios().map((name) => ({ name, args: [name], exit: 0, scene: expected[name] }));
 cases.push({ name: "cloth-32x32", args: ["cloth", "--resolution", "1/31", "--duration", "2"], exit: 0 });
 cases.push({ name: "cloth-diverged", args: ["cloth", "--dt", "0.0166667"], exit: 3 });
+for (const [name, c] of Object.entries(sceneCases)) cases.push({ name, args: ["scene", join(scenes, c.file)], exit: 0, scene: c.scene });
 for (const c of cases) {
   c.file = join(work, c.name + ".html");
   c.run = runDemo([...c.args, "--animate", c.file]);
@@ -123,7 +134,7 @@ for (const c of cases.filter((c) => c.plain)) {
 for (const c of cases.filter((c) => !c.plain)) {
   describe(c.name, { timeout: 240_000 }, () => {
     const file = c.file, exit = c.run.status;
-    let page, problems = [], requests = [];
+    let page, problems = [], requests = [], playingAtOpen = null, timeAtOpen = null;
 
     before(async () => {
       assert.ok(existsSync(file), `the demo (exit ${exit}) wrote no page: ${c.run.stderr}`);
@@ -140,6 +151,10 @@ for (const c of cases.filter((c) => !c.plain)) {
       });
       await page.goto(own);
       await page.waitForFunction(() => window.replay && (window.replay.ready || window.replay.error), null, { timeout: 60_000 });
+      // A replay plays when it opens; pause it (as a user would, with the button) for the checks that seek.
+      playingAtOpen = await page.evaluate(() => window.replay.playedOnOpen);
+      timeAtOpen = await page.evaluate(() => new Promise((done) => setTimeout(() => done(window.replay.time), 400)));
+      if (await page.evaluate(() => window.replay.playing)) await page.locator("#play").click();
     });
     after(async () => { await page?.context().close(); });
 
@@ -187,6 +202,11 @@ for (const c of cases.filter((c) => !c.plain)) {
         assert.ok(replay.frameCount >= 2, `${replay.frameCount} frames`);
         assert.ok(replay.duration > 0);
       });
+    });
+
+    it("starts playing when it opens", () => {
+      assert.equal(playingAtOpen, true, "window.replay.playing when it had loaded");
+      assert.ok(timeAtOpen > 0, `the time had not moved 0.4 s after it opened: ${timeAtOpen}`);
     });
 
     it("changes its picture between two times", async () => {

@@ -142,6 +142,18 @@ internal static class ReplayPage
             }
 
             json.WriteEndArray();
+            json.WriteStartArray("loads");
+            foreach (var (particle, force) in scene.Loads)
+            {
+                json.WriteStartArray();
+                json.WriteNumberValue(particle);
+                WriteNumberValue(json, force.X);
+                WriteNumberValue(json, force.Y);
+                WriteNumberValue(json, force.Z);
+                json.WriteEndArray();
+            }
+
+            json.WriteEndArray();
             json.WriteStartArray("colliders");
             foreach (var c in scene.Colliders)
             {

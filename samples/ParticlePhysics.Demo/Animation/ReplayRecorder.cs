@@ -28,12 +28,13 @@ internal sealed class ReplayRecorder : IRunObserver
     private int _lastStep = -1;
     private long _nextFrame;
 
-    /// <param name="setup">The particle scenario: rows hold x{i}, y{i}, z{i} at 1 + 6 i.</param>
+    /// <param name="setup">The particle scenario or scene: rows hold x{i}, y{i}, z{i} at 1 + 6 i.</param>
+    /// <param name="particleCount">Its number of particles.</param>
     /// <param name="plan">The run.</param>
-    public ReplayRecorder(ParticleSetup setup, RunPlan plan)
+    public ReplayRecorder(ScenarioSetup setup, int particleCount, RunPlan plan)
     {
         _plan = plan;
-        _count = setup.ParticleCount;
+        _count = particleCount;
         ValueNames = Array.FindAll(ToArray(setup.TableColumns), c => c != "t");
         _valueColumns = Array.ConvertAll(ValueNames, setup.IndexOf);
         var bytesPerFrame = 12.0 * Math.Max(1, _count);

@@ -43,6 +43,7 @@ internal sealed class ReplayScene
     private readonly List<int> _triangles = new();
     private readonly List<ReplayCollider> _colliders = new();
     private readonly List<int> _pinned = new();
+    private readonly List<(int Particle, Vector3d Force)> _loads = new();
 
     public ReplayScene(int particleCount)
     {
@@ -67,6 +68,9 @@ internal sealed class ReplayScene
 
     /// <summary>A surface to shade: three particle indices per triangle (empty when there is none).</summary>
     public IReadOnlyList<int> Triangles => _triangles;
+
+    /// <summary>Constant forces on particles (a scene's loads), drawn as arrows.</summary>
+    public IReadOnlyList<(int Particle, Vector3d Force)> Loads => _loads;
 
     /// <summary>The colliders.</summary>
     public IReadOnlyList<ReplayCollider> Colliders => _colliders;
@@ -125,6 +129,13 @@ internal sealed class ReplayScene
         _triangles.Add(a);
         _triangles.Add(b);
         _triangles.Add(c);
+    }
+
+    /// <summary>A constant force <paramref name="force"/> (N) on <paramref name="particle"/>, drawn as an arrow.</summary>
+    public void AddLoad(int particle, Vector3d force)
+    {
+        CheckParticle(particle, nameof(particle));
+        _loads.Add((particle, force));
     }
 
     /// <summary>A collider to draw: its shape at t = 0 and its velocity (zero for a still one).</summary>

@@ -1,14 +1,15 @@
 using ParticlePhysics.Constraints;
 using ParticlePhysics.Contacts;
 using ParticlePhysics.Forces;
+using ParticlePhysics.Scenes;
 
 namespace ParticlePhysics.Demo.Animation;
 
 /// <summary>
 /// Reads what a replay draws, besides the moving positions, from a freshly built world: the radii and pins, the
 /// springs of its force generators, the rods and cables of its constraint sets (as links by their particles or
-/// anchors), the obstacles of its contact sets (as the core describes them for renderers, with their velocity), and,
-/// for a cloth, its grid as a surface.
+/// anchors), the constant loads of a scene (as arrows), the obstacles of its contact sets (as the core describes them
+/// for renderers, with their velocity), and, for a cloth, its grid as a surface.
 /// This is the one place that knows which core types carry something drawable: a new kind of link or collider joins
 /// the replay by a case here.
 /// </summary>
@@ -43,6 +44,14 @@ internal static class SceneReader
                     {
                         var (particle, anchor) = springs.GetAnchoredSpring(s);
                         scene.AddAnchoredLink(particle, anchor, LinkKind.Spring);
+                    }
+
+                    break;
+                case ConstantLoads loads:
+                    for (var k = 0; k < loads.Count; k++)
+                    {
+                        var (particle, load) = loads.Get(k);
+                        scene.AddLoad(particle, load);
                     }
 
                     break;

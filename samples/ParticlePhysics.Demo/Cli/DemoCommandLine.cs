@@ -32,7 +32,7 @@ internal static class DemoCommandLine
         var root = new RootCommand(
             "ParticlePhysics demo: the course's scenarios (free fall, mass-spring-damper, two-mass chain, cloth, pendulum, hanging chain, scalar ODE, "
             + "bouncing ball, collision, drape) "
-            + "with any integrator, printed as a table, csv or json, optionally plotted as SVG. "
+            + "with any integrator, printed as a table, csv or json, optionally plotted as SVG; 'scene FILE.json' runs a scene file of your own. "
             + "With no arguments, runs every scenario briefly and prints one summary table. Units are SI.");
         foreach (var scenario in Scenarios())
         {
@@ -40,6 +40,7 @@ internal static class DemoCommandLine
         }
 
         root.Add(ConvergenceCommand.Create(Scenarios(), context));
+        root.Add(SceneCommand.Create(context));
         root.SetAction(_ => SummaryRun.Execute(Scenarios(), context));
         return root;
     }

@@ -44,6 +44,11 @@ internal static class ParseErrors
         }
 
         var message = parse.Errors[0].Message.Replace('\n', ' ').Replace('\r', ' ');
+        if (command.Name == SceneCommand.Name && message.StartsWith("Required argument missing", System.StringComparison.Ordinal))
+        {
+            return "scene needs a scene file: scene FILE.json [options] (samples/scenes/ has examples; docs/scenes.md describes the format).";
+        }
+
         const string missing = "Required argument missing for option: '";
         if (message.StartsWith(missing, System.StringComparison.Ordinal))
         {
@@ -57,7 +62,7 @@ internal static class ParseErrors
     private static string UnknownConvergenceScenario(Command convergence, string token)
     {
         var names = convergence.Subcommands.Select(c => c.Name).ToArray();
-        var why = token == "cloth" ? " (the cloth has no exact solution to measure the error against)" : Suggestions.DidYouMean(token, names);
+        var why = ConvergenceCommand.Refusal(token) is { } refusal ? $" ({refusal})" : Suggestions.DidYouMean(token, names);
         return $"convergence cannot run '{token}'{why}; expected one of: {string.Join(", ", names)}.";
     }
 

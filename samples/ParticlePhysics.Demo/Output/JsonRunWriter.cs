@@ -34,7 +34,7 @@ internal sealed class JsonRunWriter : IRunWriter
         _setup = setup;
         var o = _output;
         o.WriteLine("{");
-        o.WriteLine($"  \"scenario\": {JsonText.String(setup.Name)},");
+        o.WriteLine($"  {JsonText.String(setup.JsonNameKey)}: {JsonText.String(setup.Name)},");
         o.WriteLine($"  \"integrator\": {JsonText.String(plan.Integrator)},");
         o.WriteLine($"  \"dt\": {Numbers.Json(plan.Dt)},");
         o.WriteLine($"  \"steps\": {Numbers.Json(plan.Steps)},");
@@ -49,14 +49,18 @@ internal sealed class JsonRunWriter : IRunWriter
             o.WriteLine($"  \"substeps\": {Numbers.Json(plan.Substeps)},");
         }
 
-        o.Write("  \"parameters\": {");
-        for (var i = 0; i < setup.Parameters.Count; i++)
+        if (setup.HasParameters)
         {
-            var (name, value) = (setup.Parameters[i].Key, setup.Parameters[i].Value);
-            o.Write($"{(i == 0 ? " " : ", ")}{JsonText.String(name)}: {JsonText.Value(value)}");
+            o.Write("  \"parameters\": {");
+            for (var i = 0; i < setup.Parameters.Count; i++)
+            {
+                var (name, value) = (setup.Parameters[i].Key, setup.Parameters[i].Value);
+                o.Write($"{(i == 0 ? " " : ", ")}{JsonText.String(name)}: {JsonText.Value(value)}");
+            }
+
+            o.WriteLine(setup.Parameters.Count == 0 ? "}," : " },");
         }
 
-        o.WriteLine(setup.Parameters.Count == 0 ? "}," : " },");
         o.Write("  \"columns\": [");
         for (var i = 0; i < setup.Columns.Count; i++)
         {
@@ -90,15 +94,25 @@ internal sealed class JsonRunWriter : IRunWriter
         var columns = _setup!.Columns;
         o.WriteLine(_firstRow ? "]," : "\n  ],");
         o.Write($"  \"summary\": {{ \"t\": {Numbers.Json(outcome.FinalTime)}, \"step\": {Numbers.Json(outcome.FinalStep)}, ");
-        o.Write($"\"error\": {(outcome.FinalError is { } e ? Numbers.Json(e) : "null")}, \"final\": {{");
-        var first = true;
-        foreach (var name in _setup.SummaryColumns)
+        o.Write($"\"error\": {(outcome.FinalError is { } e ? Numbers.Json(e) : "null")}, \"final\": ");
+        if (_setup.FinalJson(outcome) is { } final)
         {
-            o.Write($"{(first ? " " : ", ")}{JsonText.String(name)}: {Numbers.Json(outcome.FinalRow[IndexOf(columns, name)])}");
-            first = false;
+            o.Write(final);
+        }
+        else
+        {
+            o.Write('{');
+            var first = true;
+            foreach (var name in _setup.SummaryColumns)
+            {
+                o.Write($"{(first ? " " : ", ")}{JsonText.String(name)}: {Numbers.Json(outcome.FinalRow[IndexOf(columns, name)])}");
+                first = false;
+            }
+
+            o.Write(" }");
         }
 
-        o.WriteLine(" } },");
+        o.WriteLine(" },");
         if (outcome.Diverged is { } d)
         {
             o.Write($"  \"diverged\": {{ \"t\": {Numbers.Json(d.Time)}, \"message\": {JsonText.String(d.Exception.Message)} }}");

@@ -66,6 +66,30 @@ internal static class OutputFile
         }
     }
 
+    /// <summary>
+    /// Refuses a path whose extension names another format than the one written (an SVG chart into <c>plot.png</c>, a
+    /// page into <c>page.svg</c>): a viewer would open it as what its name says and fail.
+    /// </summary>
+    /// <param name="option">The option that named the file.</param>
+    /// <param name="path">The path given.</param>
+    /// <param name="format">What is written, in words ("SVG").</param>
+    /// <param name="extensions">The extensions that name it, lower case with the dot, the first one suggested.</param>
+    public static void CheckExtension(string option, string path, string format, params string[] extensions)
+    {
+        var extension = Path.GetExtension(path);
+        foreach (var allowed in extensions)
+        {
+            if (string.Equals(extension, allowed, StringComparison.OrdinalIgnoreCase))
+            {
+                return;
+            }
+        }
+
+        var named = extension.Length == 0 ? "has no extension" : $"ends in '{extension}'";
+        throw new UsageException(
+            $"{option} writes {format}, and '{path}' {named}; give a name ending in {string.Join(" or ", extensions)} (such as '{Path.ChangeExtension(Path.GetFileName(path), extensions[0])}').");
+    }
+
     /// <summary>Writes <paramref name="text"/> to <paramref name="path"/>.</summary>
     public static void Write(string option, string path, string text) => Write(option, path, stream =>
     {

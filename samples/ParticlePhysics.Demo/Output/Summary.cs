@@ -21,10 +21,21 @@ internal static class Summary
         return head + FinalState(setup, outcome.FinalRow) + error;
     }
 
-    /// <summary>"y0 = 12.3, vy0 = -0.98": the scenario's summary columns.</summary>
-    public static string FinalState(ScenarioSetup setup, double[] row)
+    /// <summary>
+    /// "y0 = 12.3, vy0 = -0.98": the scenario's summary columns, named as the run's table columns are; with
+    /// <paramref name="particleLabels"/> (the tour, which shows no columns) a particle's values by its index in brackets,
+    /// "y[0] = 12.3", since y0 alone reads as the starting height that --y0 names.
+    /// </summary>
+    public static string FinalState(ScenarioSetup setup, double[] row, bool particleLabels = false)
     {
         var columns = setup.Columns.ToList();
-        return string.Join(", ", setup.SummaryColumns.Select(c => $"{c} = {Numbers.Brief(row[columns.IndexOf(c)])}"));
+        return string.Join(", ", setup.SummaryColumns.Select(c => $"{(particleLabels ? Label(c) : c)} = {Numbers.Brief(row[columns.IndexOf(c)])}"));
+    }
+
+    /// <summary>A column's name for people: <c>y0</c> becomes <c>y[0]</c>, <c>vx12</c> <c>vx[12]</c>; others stay.</summary>
+    public static string Label(string column)
+    {
+        var match = System.Text.RegularExpressions.Regex.Match(column, "^(v?[xyz])([0-9]+)$");
+        return match.Success ? $"{match.Groups[1].Value}[{match.Groups[2].Value}]" : column;
     }
 }

@@ -34,6 +34,9 @@ internal sealed class BouncingBallSetup : ParticleSetup
         _recorders = recorders;
     }
 
+    /// <inheritdoc />
+    public override double? MotionEnds => double.IsFinite(_scenario.RestTime) && _scenario.Friction == 0 && _scenario.Vx0 == 0 ? _scenario.RestTime : null;
+
     public override IReadOnlyList<string> SummaryDetails
     {
         get

@@ -19,4 +19,7 @@ internal class ClothSetup : ParticleSetup
 
     /// <summary>n: the cloth has n x n particles, particle (row, col) at index row * n + col.</summary>
     public int ParticlesPerSide { get; }
+
+    /// <inheritdoc />
+    public override int SurfaceSide => ParticlesPerSide;
 }

@@ -11,7 +11,7 @@ namespace ParticlePhysics.Demo.Running;
 /// <c>error</c> when there is an exact solution, then <c>energy</c> (kinetic + potential, J), for meshes <c>min_y</c> and <c>max_speed</c>,
 /// then the scenario's own extra columns (a pendulum's angle and period, a chain's distance from its catenary).
 /// </summary>
-internal class ParticleSetup : ScenarioSetup
+internal class ParticleSetup : ScenarioSetup, IParticleRun
 {
     private readonly Func<ParticleWorld> _build;
     private readonly int _count;
@@ -151,6 +151,12 @@ internal class ParticleSetup : ScenarioSetup
 
     /// <summary>A fresh world at t = 0, as every run starts from (the replay reads its pins and springs).</summary>
     public ParticleWorld BuildWorld() => _build();
+
+    /// <inheritdoc />
+    public virtual int SurfaceSide => 0;
+
+    /// <inheritdoc />
+    public string? Subtitle => null;
 
     protected override void FillExact(double time, Span<double> row)
     {

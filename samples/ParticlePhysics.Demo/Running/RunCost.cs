@@ -54,10 +54,11 @@ internal sealed record RunCost(long Steps, int Particles, long Springs, double S
     /// <summary>The estimate for <paramref name="setup"/> run as <paramref name="plan"/> says.</summary>
     public static RunCost For(ScenarioSetup setup, RunPlan plan)
     {
-        var particles = (setup as ParticleSetup)?.ParticleCount ?? 0;
+        var particles = (setup as IParticleRun)?.ParticleCount ?? 0;
         long springs = setup switch
         {
             ClothSetup cloth => ClothScenario.SpringCount(cloth.ParticlesPerSide),
+            SceneSetup scene => scene.SpringCount,
             ParticleSetup => particles, // a chain's or an anchor's few springs
             _ => 0,
         };
@@ -78,7 +79,7 @@ internal sealed record RunCost(long Steps, int Particles, long Springs, double S
         var integratorBytes = (long)(_integratorBytes.TryGetValue(integrator, out var b) ? b : 96) * particles;
         if (integrator == "implicit-euler" && particles >= ImplicitEuler.MultigridThreshold && springs > 0)
         {
-            // The multigrid preconditioner (Integrators/AggregationMultigrid.cs): 8 ints per coupling (the pairs, their
+            // The multigrid preconditioner (Integrators/Multigrid/): 8 ints per coupling (the pairs, their
             // copy for the change check, the two block targets and the assembly's masked targets), and per particle the
             // aggregation maps and the coarse levels' 3 x 3 blocks (about a quarter as many rows per level, some nine
             // blocks each): 320 bytes, from the 64 x 64 cloth's 2.05 MB that the measurement below found beyond the rest.
@@ -90,6 +91,11 @@ internal sealed record RunCost(long Steps, int Particles, long Springs, double S
         if (setup is ParticleSetup rows)
         {
             demo = 48 + (16L * rows.ColumnCount) + rows.ColumnNameBytes() + (setup.Exact is null ? 0 : 48L * particles);
+        }
+        else if (setup is SceneSetup)
+        {
+            // 6 columns per particle, 8 bytes in the row and about 40 bytes of name each.
+            demo = 48 + (288L * particles);
         }
 
         return (137L * particles) + springBytes + integratorBytes + demo;

@@ -48,6 +48,18 @@ internal abstract class ScenarioSetup
     /// </summary>
     public virtual IReadOnlyList<string> SummaryDetails => Array.Empty<string>();
 
+    /// <summary>When the motion ends (the bouncing ball comes to rest), in s, or null: a summary says so where it shows a still state.</summary>
+    public virtual double? MotionEnds => null;
+
+    /// <summary>The json header's name for what runs: <c>scenario</c>, or <c>scene</c> for a scene file.</summary>
+    public virtual string JsonNameKey => "scenario";
+
+    /// <summary>True when the json header lists <see cref="Parameters"/> (a scene's are in its file).</summary>
+    public virtual bool HasParameters => true;
+
+    /// <summary>The json summary's <c>final</c> object, or null for the <see cref="SummaryColumns"/> of the final row.</summary>
+    public virtual string? FinalJson(RunOutcome outcome) => null;
+
     /// <summary>The exact value of <paramref name="exactColumn"/> (one of the <c>..._exact</c> columns) at any time, for smooth plots.</summary>
     public double ExactValue(string exactColumn, double time)
     {

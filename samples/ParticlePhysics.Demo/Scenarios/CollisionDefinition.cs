@@ -21,6 +21,11 @@ internal sealed class CollisionDefinition : ScenarioDefinition
 
     public override string Name => "collision";
 
+    /// <inheritdoc />
+    public override string? ConvergenceRefusal =>
+        "the particles move along straight lines and meet at the exact time of their impact under every integrator: the "
+        + "error is round-off (about 1e-14) and has no order in dt";
+
     public override string Description =>
         "Two particles of radius r meet head-on; exact: they touch at t* = (2 - 2 r) / (v1 - v2) and leave with "
         + "v1' = (m1 v1 + m2 v2 - m2 e (v1 - v2)) / (m1 + m2), v2' = (m1 v1 + m2 v2 + m1 e (v1 - v2)) / (m1 + m2). No gravity unless --gravity.";

@@ -22,10 +22,14 @@ internal static class ConvergenceCommand
     /// <summary>The name of the command.</summary>
     public const string Name = "convergence";
 
+    /// <summary>Why convergence does not run a scenario, by the scenario's name (for the error that names it).</summary>
+    public static string? Refusal(string scenario) =>
+        DemoCommandLine.Scenarios().FirstOrDefault(s => s.Name == scenario)?.ConvergenceRefusal;
+
     public static Command Create(IEnumerable<ScenarioDefinition> scenarios, DemoContext context)
     {
         var command = new Command(Name, "Error at the end time and observed order of each integrator as dt halves, for a scenario with an exact solution.");
-        foreach (var scenario in scenarios.Where(s => s.HasExactSolution))
+        foreach (var scenario in scenarios.Where(s => s.ConvergenceRefusal is null))
         {
             command.Add(CreateFor(scenario, context));
         }
@@ -61,6 +65,7 @@ internal static class ConvergenceCommand
             if (parse.GetValue(plot) is { } plotPath)
             {
                 OutputFile.CheckWritable("--plot", plotPath);
+                OutputFile.CheckExtension("--plot", plotPath, "SVG", ".svg");
             }
 
             var names = parse.GetValue(integrator) is { } one

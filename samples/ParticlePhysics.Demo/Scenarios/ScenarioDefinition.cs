@@ -31,6 +31,12 @@ internal abstract class ScenarioDefinition
     /// <summary>When the exact solution holds, for the error a convergence study gives without one ("without drag (--drag 0)").</summary>
     public virtual string ExactSolutionCondition => "with other options";
 
+    /// <summary>
+    /// Why <c>convergence</c> does not run this scenario, or null when it does (it has an exact solution whose error
+    /// shrinks with dt at each integrator's order).
+    /// </summary>
+    public virtual string? ConvergenceRefusal => HasExactSolution ? null : "it has no exact solution to measure the error against";
+
     /// <summary>True for a plain first-order ODE, which refuses the integrators that need positions and velocities.</summary>
     public virtual bool IsPlainOde => false;
 

@@ -21,6 +21,7 @@ internal static class SummaryRun
         var clock = Stopwatch.StartNew();
         var table = new TextTable("scenario", "integrator", ">dt (s)", ">t (s)", "final state", ">error");
         var interrupted = false;
+        var footnotes = new List<string>();
         foreach (var scenario in scenarios)
         {
             if (interrupted)
@@ -55,7 +56,21 @@ internal static class SummaryRun
                 var error = outcome.Diverged is { } d
                     ? $"diverged at t = {Numbers.Brief(d.Time)}"
                     : outcome.FinalError is { } e ? Numbers.Error(e) : "n/a";
-                table.Add(scenario.Name, integrator, Numbers.Brief(plan.Dt), Numbers.Brief(outcome.FinalTime), Summary.FinalState(setup, outcome.FinalRow), error);
+                var state = Summary.FinalState(setup, outcome.FinalRow, particleLabels: true);
+                if (setup.MotionEnds is { } end && end < outcome.FinalTime)
+                {
+                    // Zeros that mean "at rest", not "nothing happened": say when the motion ended.
+                    var mark = new string('*', footnotes.Count + 1);
+                    var note = $"{mark} {scenario.Name}: at rest from t = {Numbers.Brief(end)} s on (the bounces end at T = t1 (1 + e) / (1 - e)), so its final state and error are 0.";
+                    if (!footnotes.Exists(f => f.EndsWith(note.Substring(mark.Length), System.StringComparison.Ordinal)))
+                    {
+                        footnotes.Add(note);
+                    }
+
+                    state += " " + footnotes.Find(f => f.EndsWith(note.Substring(mark.Length), System.StringComparison.Ordinal))!.Split(' ')[0];
+                }
+
+                table.Add(scenario.Name, integrator, Numbers.Brief(plan.Dt), Numbers.Brief(outcome.FinalTime), state, error);
             }
         }
 
@@ -63,6 +78,11 @@ internal static class SummaryRun
         context.Output.WriteLine("error = max abs difference from the exact solution over positions and velocities at the final time (n/a: the cloth, the hanging chain and the drape have none; the chain's catenary_distance is its distance from its exact rest shape).");
         context.Output.WriteLine();
         table.Write(context.Output);
+        foreach (var note in footnotes)
+        {
+            context.Output.WriteLine(note);
+        }
+
         context.Output.WriteLine();
         if (interrupted)
         {

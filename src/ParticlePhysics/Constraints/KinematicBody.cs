@@ -67,6 +67,7 @@ public sealed class KinematicBody
     /// </summary>
     public bool Detach(int particle)
     {
+        _world.ThrowIfStepping(); // before the body forgets the particle: Unpin would refuse only after that
         var index = _particles.IndexOf(particle);
         if (index < 0)
         {
@@ -86,8 +87,17 @@ public sealed class KinematicBody
     /// Sets the body's pose at the end of the next <paramref name="duration"/> seconds, and gives every attached particle
     /// the velocity that takes it to its point of the body then. Allocates nothing.
     /// </summary>
+    /// <exception cref="ArgumentOutOfRangeException">
+    /// The pose would take an attached particle beyond the finite numbers, or the duration is so short that a
+    /// particle's velocity (target - x) / duration overflows (a particle that stays where it is needs none, at any
+    /// duration). Every particle is checked before anything changes: the body and the world are left as they were.
+    /// </exception>
+    /// <exception cref="InvalidOperationException">
+    /// An attached particle was unpinned behind the body's back, or the call comes from inside the world's step.
+    /// </exception>
     public void MoveTo(Vector3d position, Rotation3d orientation, double duration)
     {
+        _world.ThrowIfStepping();
         Guard.Finite(position, nameof(position));
         Guard.PositiveFinite(duration, nameof(duration));
         for (var a = 0; a < _particles.Count; a++)
@@ -99,7 +109,9 @@ public sealed class KinematicBody
             }
         }
 
-        // Every target first, so that a pose that would take one particle beyond the finite numbers changes nothing.
+        // Every target and every velocity first, so that a pose or a duration that would take one particle beyond the
+        // finite numbers changes nothing, not even the pose or the particles before it. The loop below computes the same
+        // velocities from the same values.
         for (var a = 0; a < _particles.Count; a++)
         {
             var target = position + orientation.Rotate(_offsets[a]);
@@ -111,9 +123,10 @@ public sealed class KinematicBody
                     $"This pose would take particle {_particles[a]} (offset {_offsets[a]} in the body) to {target}: every "
                     + "attached particle's target must be finite.");
             }
+
+            _ = _world.KinematicVelocity(_particles[a], target, duration, nameof(position));
         }
 
-        _world.ThrowIfStepping();
         Position = position;
         Orientation = orientation;
         for (var a = 0; a < _particles.Count; a++)

@@ -6,8 +6,9 @@ namespace ParticlePhysics.Constraints;
 
 /// <summary>
 /// Rods and cables between two particles, or between a particle and a fixed anchor. A rod holds its ends at exactly
-/// its length L: C = |x_i - x_j| - L = 0. A cable holds them at most L apart (C &lt;= 0): a rod while taut, nothing
-/// while slack; going taut is an inelastic impact (the separating velocity is removed by an impulse along the cable).
+/// its length L: C = |x_i - x_j| - L = 0 (L from about 5.6e-309 m to 1.34e154 m: its inverse and its square finite).
+/// A cable holds them at most L apart (C &lt;= 0): a rod while taut, nothing while slack; going taut is an inelastic
+/// impact (the separating velocity is removed by an impulse along the cable).
 /// </summary>
 /// <remarks>
 /// <para>
@@ -19,7 +20,10 @@ namespace ParticlePhysics.Constraints;
 /// stages exactly, so each integrator keeps its order; what drifts (the error of the step itself) is removed after the
 /// step by <see cref="Resolve"/>: the positions are projected onto C = 0 by Newton's method in the mass metric
 /// (dx = W J^T mu with (J W J^T) mu = -C, unit gradients), then the velocities onto C' = 0 (dv = W J^T nu,
-/// (J W J^T) nu = -J v), which keeps every length within 1e-12 of L.
+/// (J W J^T) nu = -J v), which keeps every length within 1e-12 of L. After a kick and a drift (semi-implicit Euler,
+/// <see cref="ConstraintContext.KickDrift"/>) the positions move along the gradients at the step's start instead, and
+/// the velocities with them (SHAKE), which keeps the energy bounded where the projection of positions alone let it grow
+/// without bound.
 /// </para>
 /// <para>
 /// J W J^T couples two constraints that share a free particle. When the constraints only couple to neighbours a few
@@ -36,7 +40,7 @@ namespace ParticlePhysics.Constraints;
 /// change of positions then carry the inelastic impact of a cable going taut.
 /// </para>
 /// </remarks>
-public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
+public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces, IForceJacobian
 {
     /// <summary>The largest half-bandwidth of J W J^T solved by the direct band factorisation; wider ones use conjugate gradients.</summary>
     public const int MaxDirectBandwidth = 16;
@@ -93,6 +97,15 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
     private double[] _diagonal = Array.Empty<double>();
     private double[] _perParticle = Array.Empty<double>();
 
+    // SHAKE's projection after a kick and a drift: the multipliers of its accepted iterations, and of the last one.
+    private double[] _kick = Array.Empty<double>();
+    private double[] _kickStep = Array.Empty<double>();
+
+    // The implicit step's linearisation (IForceJacobian): a h^2 times each link's tension per unit length, and the
+    // number of links it covers (-1 before the first).
+    private double[] _geometric = Array.Empty<double>();
+    private int _linearizedLinks = -1;
+
     private double _driftStiffness;
     private double _driftDamping;
 
@@ -115,6 +128,7 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
         get => _driftStiffness;
         set
         {
+            _world.ThrowIfStepping();
             Guard.NonNegativeFinite(value, nameof(DriftStiffness));
             _driftStiffness = value;
         }
@@ -126,6 +140,7 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
         get => _driftDamping;
         set
         {
+            _world.ThrowIfStepping();
             Guard.NonNegativeFinite(value, nameof(DriftDamping));
             _driftDamping = value;
         }
@@ -344,6 +359,102 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
 
     /// <inheritdoc />
     /// <remarks>
+    /// The geometric stiffness of the tensions of the last <see cref="AddConstraintForces"/>, which the world runs at the
+    /// same state just before (Tournier et al., "Stable Constrained Dynamics", 2015). The force lambda d on end i
+    /// (d = x_i - x_j, lambda &lt; 0 pulling) changes with the ends' positions, at fixed lambda, by
+    /// d(lambda d) / dx_i = lambda I: a zero-length spring of stiffness k = -lambda = T / |d|, the tension per unit length.
+    /// Why: an implicit step that sees the tension only as a force applies it along the start's direction while the rod
+    /// turns, and that does work (on a chain under gravity the step is then semi-implicit Euler's, with its gain: see
+    /// ProjectIntoTheKick). With this linearisation the step's tension acts along the end's direction,
+    /// lambda_0 (x1_i - x1_j), where the velocities are tangent to the rods to O(h^2): the tension does no work to
+    /// leading order, and implicit Euler dissipates |dv|_M^2 / 2 per step, as it does on any force. On a uniform
+    /// rotation the step is backward Euler's on y' = i omega y: it turns by atan(h omega) and keeps
+    /// 1 / sqrt(1 + (h omega)^2) of the speed. Left out:
+    /// the derivatives of lambda itself (J^T dlambda / dx, along the rods, dense over a chain and not symmetric), which
+    /// the projection after the step stands in for; and a rod that pushes (lambda &gt; 0), whose positive stiffness
+    /// could make the implicit system indefinite, as springs clamp their compressed transverse stiffness. No velocity
+    /// derivative: J = a K.
+    /// </remarks>
+    public void Linearize(
+        in ParticleState state, double positionScale, double velocityScale, Span<double> positionJacobianTimesVelocity)
+    {
+        EnsureTopology(state.Count);
+        var v = state.Velocities.ForReading();
+        for (var r = 0; r < _count; r++)
+        {
+            var k = _lambda[r] < 0.0 ? -_lambda[r] : 0.0;
+            _geometric[r] = positionScale * k;
+            if (k == 0.0)
+            {
+                continue;
+            }
+
+            // (df/dx) v: -k (v_i - v_j) on end i, +k (v_i - v_j) on end j.
+            int i = 3 * _first[r], j = 3 * _second[r];
+            for (var c = 0; c < 3; c++)
+            {
+                var relative = j >= 0 ? v[i + c] - v[j + c] : v[i + c];
+                positionJacobianTimesVelocity[i + c] -= k * relative;
+                if (j >= 0)
+                {
+                    positionJacobianTimesVelocity[j + c] += k * relative;
+                }
+            }
+        }
+
+        _linearizedLinks = _count;
+    }
+
+    /// <inheritdoc />
+    /// <exception cref="InvalidOperationException">No <see cref="Linearize"/> yet, or links were added since.</exception>
+    public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)
+    {
+        CheckLinearized();
+        var wr = w.ForReading();
+        for (var r = 0; r < _count; r++)
+        {
+            var g = _geometric[r];
+            if (g == 0.0)
+            {
+                continue;
+            }
+
+            int i = 3 * _first[r], j = 3 * _second[r];
+            for (var c = 0; c < 3; c++)
+            {
+                var relative = j >= 0 ? wr[i + c] - wr[j + c] : wr[i + c];
+                result[i + c] -= g * relative;
+                if (j >= 0)
+                {
+                    result[j + c] += g * relative;
+                }
+            }
+        }
+    }
+
+    /// <inheritdoc />
+    /// <exception cref="InvalidOperationException">No <see cref="Linearize"/> yet, or links were added since.</exception>
+    public void AddDiagonalBlocks(Span<double> blocks)
+    {
+        CheckLinearized();
+        for (var r = 0; r < _count; r++)
+        {
+            var g = _geometric[r];
+            if (g == 0.0)
+            {
+                continue;
+            }
+
+            AddIsotropic(blocks, _first[r], -g);
+            if (_second[r] >= 0)
+            {
+                AddIsotropic(blocks, _second[r], -g);
+            }
+        }
+    }
+
+    /// <inheritdoc />
+    /// <remarks>
     /// Removes the drift that the step left: positions onto C = 0 (rods, and cables stretched beyond their length) by
     /// Newton's method in the mass metric, then velocities onto C' = 0 (rods, and taut cables that separate: the
     /// inelastic impulse of a cable going taut).
@@ -358,6 +469,13 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
         EnsureTopology(context.Count);
         var w = context.InverseMasses.ForReading();
         var x = context.Positions;
+        if (context.KickDrift)
+        {
+            ProjectIntoTheKick(context, w);
+        }
+
+        // Newton in the mass metric along the current gradients: the whole projection after the other integrators;
+        // after a kick and a drift only a check, unless SHAKE's iteration above stopped short of the tolerance.
         for (var iteration = 0; iteration < MaxNewtonIterations; iteration++)
         {
             var worst = 0.0;
@@ -418,6 +536,127 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
         {
             SolveWithPullingCables(w);
             ApplyCorrection(w, vel);
+        }
+    }
+
+    /// <summary>
+    /// SHAKE's projection after a kick and a drift (<see cref="ConstraintContext.KickDrift"/>): the end positions move
+    /// along the gradients at the step's start, x1 += W J(x0)^T mu with C(x1) = 0, and the end velocities by the same
+    /// over dt, so that x1 = x0 + dt v1 still holds. Why, in the smooth form of <see cref="AddConstraintForces"/>
+    /// (A = J W J^T, b_r = |e_r|^2 the rods' centripetal terms, lambda the explicit tension, Q the applied forces): the
+    /// kick leaves the tangent space, J(x0) v1 = -dt b, and the kick and the drift change the energy by
+    /// (dt^2 / 2) (lambda^T A lambda - |Q|_W^2), in which (dt^2 / 2) b^T A^-1 b grows as the fourth power of the
+    /// speeds. Moving the positions alone onto the rods leaves that energy in the velocities, so chains run away. The
+    /// end lies off the rods by C(x1) = -dt^2 b / 2, so A mu = dt^2 b / 2 to leading order, and with mu folded into the
+    /// kick v1 . M dv = (J(x0) v1) . mu / dt = -(dt^2 / 2) b^T A^-1 b takes that back: the step is the constrained
+    /// symplectic Euler method (Hairer, Lubich and Wanner, "Geometric Numerical Integration", VII.1),
+    /// v1 = v0 + dt W (Q(x0) + J(x0)^T Lambda), x1 = x0 + dt v1, C(x1) = 0, then the velocities projected onto C' = 0
+    /// at x1 (RATTLE's second projection, which only removes energy), and its energy stays bounded. On a uniform
+    /// rotation it keeps the speed exactly and turns by asin(h omega). The gradients must be the start's: along the
+    /// end's, dv would lie along the normals that the velocity projection removes, and change nothing.
+    /// mu is found by the quasi-Newton iteration of SHAKE, (J(x0) W J(x0)^T) dmu = -C(x): it contracts as fast as the
+    /// rods turn in a step. An iteration that does not shrink the largest violation (a rod that turned by nearly a right
+    /// angle, or a state far off its rods) is undone, and the Newton projection along the current gradients finishes
+    /// without touching the velocities, as after the other integrators.
+    /// </summary>
+    private void ProjectIntoTheKick(in ConstraintContext context, Span<double> w)
+    {
+        var x = context.Positions;
+        var x0 = context.StartPositions.ForReading();
+        for (var r = 0; r < _count; r++)
+        {
+            var l0 = Distance(x0, r, out var dx, out var dy, out var dz);
+            if (l0 > 0.0)
+            {
+                SetGradient(r, dx / l0, dy / l0, dz / l0);
+            }
+            else
+            {
+                SetGradient(r, 0, 0, 0);
+            }
+
+            _kick[r] = 0.0;
+        }
+
+        var worst = KickViolations(x);
+        var any = false;
+        for (var iteration = 0; iteration < MaxNewtonIterations && worst > ProjectionTolerance; iteration++)
+        {
+            Solve(w);
+            for (var r = 0; r < _count; r++)
+            {
+                _kickStep[r] = _active[r] ? _lambda[r] : 0.0;
+            }
+
+            AddStartCorrection(w, x, _kickStep, 1.0);
+            var next = KickViolations(x);
+            if (!(next < worst))
+            {
+                AddStartCorrection(w, x, _kickStep, -1.0);
+                break;
+            }
+
+            for (var r = 0; r < _count; r++)
+            {
+                _kick[r] += _kickStep[r];
+                any |= _kickStep[r] != 0.0;
+            }
+
+            worst = next;
+        }
+
+        if (any)
+        {
+            AddStartCorrection(w, context.Velocities, _kick, 1.0 / context.Dt);
+        }
+    }
+
+    /// <summary>
+    /// The violations at <paramref name="x"/> for SHAKE's iteration (the start gradients set): the right-hand side -C,
+    /// the active links (a start direction, and a rod, or a cable stretched beyond its length); returns the largest
+    /// |C| / L.
+    /// </summary>
+    private double KickViolations(Span<double> x)
+    {
+        var worst = 0.0;
+        for (var r = 0; r < _count; r++)
+        {
+            var violation = Distance(x, r, out _, out _, out _) - _length[r];
+            var active = GradientDot(r, r) > 0.0 && (!_cable[r] || violation > 0.0);
+            _active[r] = active;
+            _rhs[r] = -violation;
+            if (active)
+            {
+                worst = Math.Max(worst, Math.Abs(violation) / _length[r]);
+            }
+        }
+
+        return worst;
+    }
+
+    /// <summary>Adds W J^T (scale m) into <paramref name="target"/> for every link with m_r != 0 (J's rows the gradients set).</summary>
+    private void AddStartCorrection(Span<double> w, Span<double> target, double[] multipliers, double scale)
+    {
+        for (var r = 0; r < _count; r++)
+        {
+            var m = multipliers[r];
+            if (m == 0.0)
+            {
+                continue;
+            }
+
+            int i = 3 * _first[r], j = 3 * _second[r], g = 3 * r;
+            var si = scale * m * w[_first[r]];
+            target[i] += si * _gradient[g];
+            target[i + 1] += si * _gradient[g + 1];
+            target[i + 2] += si * _gradient[g + 2];
+            if (j >= 0)
+            {
+                var sj = scale * m * w[_second[r]];
+                target[j] -= sj * _gradient[g];
+                target[j + 1] -= sj * _gradient[g + 1];
+                target[j + 2] -= sj * _gradient[g + 2];
+            }
         }
     }
 
@@ -499,6 +738,16 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
 
         Guard.Finite(anchor, nameof(anchor));
         Guard.PositiveWithFiniteInverse(length, nameof(length), "m"); // the solve divides by it
+        if (!DoubleChecks.IsFinite(length * length))
+        {
+            // The constraint forces use C = (|d|^2 - L^2) / 2: L^2 = infinity made every evaluation NaN.
+            throw new ArgumentOutOfRangeException(
+                nameof(length),
+                length,
+                $"length must be at most about 1.34e154 m, so that its square is finite (the constraint C = (|d|^2 - L^2) / 2 "
+                + $"squares it, as a capsule's segment is); got {Guard.Format(length)}.");
+        }
+
         _world.ThrowIfStepping();
         if (_count == _first.Length)
         {
@@ -557,6 +806,25 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
         }
 
         return Math.Sqrt((dx * dx) + (dy * dy) + (dz * dz));
+    }
+
+    /// <summary>Adds s I to the 3 x 3 block of <paramref name="particle"/> (9 values per particle, row-major).</summary>
+    private static void AddIsotropic(Span<double> blocks, int particle, double s)
+    {
+        var o = 9 * particle;
+        blocks[o] += s;
+        blocks[o + 4] += s;
+        blocks[o + 8] += s;
+    }
+
+    private void CheckLinearized()
+    {
+        if (_linearizedLinks != _count || _topologyStale)
+        {
+            throw new InvalidOperationException(_linearizedLinks < 0
+                ? "The rods' Jacobian products and blocks need a Linearize first."
+                : "Rods or cables were added since the last Linearize: linearise again.");
+        }
     }
 
     private void SetGradient(int r, double gx, double gy, double gz)
@@ -893,6 +1161,10 @@ public sealed class RodNetwork : IStatefulConstraintSet, IConstraintForces
         _tension.AsSpan(0, Math.Min(_tension.Length, n)).CopyTo(tension);
         _tension = tension;
         _active = new bool[n];
+        _kick = new double[n];
+        _kickStep = new double[n];
+        _geometric = new double[n];
+        _linearizedLinks = -1;
         if (bandwidth <= MaxDirectBandwidth)
         {
             _band = new double[n * (bandwidth + 1)];

@@ -1,4 +1,5 @@
 using System;
+using System.Runtime.CompilerServices;
 using System.Runtime.InteropServices;
 using ParticlePhysics.Parallel;
 
@@ -17,7 +18,9 @@ namespace ParticlePhysics.Constraints;
 /// with the multiplier reset (Macklin, Mueller and Chentanez, "XPBD", 2016, with its damping; "Small Steps", 2019):
 /// dlambda = (-C - gamma grad C . (x - x0)) / ((1 + gamma) w + alpha / h^2) with gamma = alpha beta / h and
 /// w = w_i + w_j. Multiplied through by k h^2 it reads dlambda = -(k h^2 C + c h grad C . (x - x0)) / ((k h^2 + c h) w + 1),
-/// which stays finite for k = 0 (a pure damper) and tends to the rigid -C / w as k grows: stable at any stiffness.
+/// which stays finite for k = 0 (a pure damper) and tends to the rigid -C / w as k grows: stable at any stiffness. Where
+/// (k h^2 + c h) w overflows (k near double.MaxValue on a light particle) the same value is computed divided through by
+/// k h^2 + c h, so that the limit is reached rather than lost to an infinite denominator.
 /// Then x_i += w_i dlambda u, x_j -= w_j dlambda u with u = (x_i - x_j) / |x_i - x_j|. A mass m hanging at rest on
 /// such a spring is a fixed point of the substep exactly when the stretch is m g alpha, whatever h.
 /// </para>
@@ -273,8 +276,11 @@ public sealed class SpringProjection : IForceProjection
             var inverse = 1.0 / l;
             double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
             var moved = (ux * mx) + (uy * my) + (uz * mz);
-            var dlambda = -((p->Stiffness * (l - p->RestLength)) + (p->Damping * moved))
-                / (((p->Stiffness + p->Damping) * wsum) + 1.0);
+            var numerator = (p->Stiffness * (l - p->RestLength)) + (p->Damping * moved);
+            var denominator = ((p->Stiffness + p->Damping) * wsum) + 1.0;
+            var dlambda = denominator <= double.MaxValue && Math.Abs(numerator) <= double.MaxValue
+                ? -numerator / denominator
+                : StiffLimit(p->Stiffness, p->Damping, l - p->RestLength, moved, wsum);
             double cx = dlambda * ux, cy = dlambda * uy, cz = dlambda * uz;
 
             // The two ends are distinct particles (checked in Refresh), so the values read above are still theirs.
@@ -312,12 +318,55 @@ public sealed class SpringProjection : IForceProjection
             var inverse = 1.0 / l;
             double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
             var moved = (ux * mx) + (uy * my) + (uz * mz);
-            var dlambda = -((p->Stiffness * (l - p->RestLength)) + (p->Damping * moved))
-                / (((p->Stiffness + p->Damping) * wi) + 1.0);
+            var numerator = (p->Stiffness * (l - p->RestLength)) + (p->Damping * moved);
+            var denominator = ((p->Stiffness + p->Damping) * wi) + 1.0;
+            var dlambda = denominator <= double.MaxValue && Math.Abs(numerator) <= double.MaxValue
+                ? -numerator / denominator
+                : StiffLimit(p->Stiffness, p->Damping, l - p->RestLength, moved, wi);
             x[i] += wi * (dlambda * ux);
             x[i + 1] += wi * (dlambda * uy);
             x[i + 2] += wi * (dlambda * uz);
         }
+    }
+
+    /// <summary>
+    /// dlambda where the usual form's numerator or denominator overflows (a stiffness near double.MaxValue on a light
+    /// particle: (k h^2 + c h) w = infinity would make the correction 0, and the spring let its particle fall). Dividing
+    /// through by s = k h^2 + c h gives the same value in terms that stay finite:
+    /// dlambda = -(a C + b u . dx) / (w + 1 / s), a = k h^2 / s, b = c h / s (a + b = 1),
+    /// which tends to the rigid projection -C / w as k grows. Where s itself overflows, 1 / s is taken as 0 (below the
+    /// rounding of w for any mass under 1e292 kg) and a, b from halves of the two terms; a term that is infinite itself
+    /// (a substep longer than 1e154 s) takes the whole, two of them half each.
+    /// </summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]
+    private static double StiffLimit(double stiffness, double damping, double violation, double moved, double w)
+    {
+        double a, b, inverse;
+        var s = stiffness + damping;
+        if (s <= double.MaxValue)
+        {
+            (a, b, inverse) = (stiffness / s, damping / s, 1.0 / s);
+        }
+        else
+        {
+            double halfStiffness = 0.5 * stiffness, halfDamping = 0.5 * damping;
+            var half = halfStiffness + halfDamping;
+            inverse = 0.0;
+            if (half <= double.MaxValue)
+            {
+                (a, b) = (halfStiffness / half, halfDamping / half);
+            }
+            else if (double.IsInfinity(stiffness) && double.IsInfinity(damping))
+            {
+                (a, b) = (0.5, 0.5);
+            }
+            else
+            {
+                (a, b) = double.IsInfinity(stiffness) ? (1.0, 0.0) : (0.0, 1.0);
+            }
+        }
+
+        return -((a * violation) + (b * moved)) / (w + inverse);
     }
 
     /// <summary>k h^2 and c h of every spring for the substep h, in the projection order.</summary>

@@ -65,12 +65,18 @@ public sealed class BoxObstacle : Obstacle
     /// Turns the box: its first axis along <paramref name="axisX"/>, its second along the part of
     /// <paramref name="axisY"/> orthogonal to that (Gram-Schmidt), its third their cross product.
     /// </summary>
-    /// <exception cref="ArgumentOutOfRangeException">An axis is zero or not finite, or the two are parallel.</exception>
+    /// <remarks>Any finite lengths will do (1e-200 or 1e300): both axes are normalised before they are compared.</remarks>
+    /// <exception cref="ArgumentOutOfRangeException">
+    /// An axis is zero or not finite, or the two are parallel (the sine of their angle at most 1e-12).
+    /// </exception>
     public void SetOrientation(Vector3d axisX, Vector3d axisY)
     {
+        // Normalised first: |axisY| itself underflows to 0 below about 1e-154 and overflows above about 1e154, and a
+        // test scaled by it would call such axes parallel. For unit u, |u - (u . x) x| is the sine of the angle.
         var x = UnitVectors.Normalized(axisX, nameof(axisX));
-        var y = axisY - (Vector3d.Dot(axisY, x) * x);
-        if (!(y.Length > 1e-12 * axisY.Length))
+        var u = UnitVectors.Normalized(axisY, nameof(axisY));
+        var y = u - (Vector3d.Dot(u, x) * x);
+        if (!(y.Length > 1e-12))
         {
             throw new ArgumentOutOfRangeException(
                 nameof(axisY), axisY, $"axisY must not be parallel to axisX {axisX}; got {axisY}.");

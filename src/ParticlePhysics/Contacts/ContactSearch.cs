@@ -87,7 +87,7 @@ internal static class ContactSearch
         {
             paths.Evaluate(i, s, out var ax, out var ay, out var az, out var avx, out var avy, out var avz);
             paths.Evaluate(j, s, out var bx, out var by, out var bz, out var bvx, out var bvy, out var bvz);
-            var gap = SphereObstacle.PointDistance(ax - bx, ay - by, az - bz, out var nx, out var ny, out var nz) - reach;
+            var gap = PairNormal.Of(ax - bx, ay - by, az - bz, i, j, out var nx, out var ny, out var nz) - reach;
             var rate = ((avx - bvx) * nx) + ((avy - bvy) * ny) + ((avz - bvz) * nz);
             if (gap <= ToleranceAt(Math.Abs(ax) + Math.Abs(ay) + Math.Abs(az)) && rate <= RateTolerance)
             {

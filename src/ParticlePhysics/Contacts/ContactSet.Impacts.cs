@@ -18,15 +18,16 @@ public sealed partial class ContactSet
     /// <summary>
     /// Queues each particle's first obstacle impact and each candidate pair's first impact; then, earliest first,
     /// resolves an impact, changes its particles' paths from then on, and queues their next impacts. Bounded: at most
-    /// <see cref="ImpactsPerItem"/> (N + pairs) impacts.
+    /// <see cref="ImpactsPerItem"/> (N + pairs) impacts. The queue holds at most that many and N + pairs more at once,
+    /// and grows only to what is queued at once (<see cref="ImpactQueue"/>).
     /// </summary>
     private void ResolveImpacts(in ConstraintContext context)
     {
         var n = context.Count;
         var inverseMasses = context.InverseMasses.ForReading();
         var radii = context.Radii.ForReading();
-        var budget = ImpactsPerItem * (n + _pairCount);
-        _queue.Reset(budget + n + _pairCount + 64);
+        var budget = (long)ImpactsPerItem * (n + (long)_pairCount);
+        _queue.Reset((int)Math.Min(budget + n + _pairCount + 64, int.MaxValue));
         if (_obstacles.Count == 0 && _pairCount == 0)
         {
             return;
@@ -49,7 +50,7 @@ public sealed partial class ContactSet
             }
         }
 
-        var resolved = 0;
+        var resolved = 0L;
         while (_queue.Count > 0 && resolved < budget)
         {
             var s = _queue.Pop(out var first, out var second, out var firstEpoch, out var secondEpoch);
@@ -133,7 +134,7 @@ public sealed partial class ContactSet
             _paths.Evaluate(a, 0.0, out var pa, out var va);
             _paths.Evaluate(b, 0.0, out var pb, out var vb);
             var d = pa - pb;
-            var gap = SphereObstacle.PointDistance(d.X, d.Y, d.Z, out var nx, out var ny, out var nz) - reach;
+            var gap = PairNormal.Of(d.X, d.Y, d.Z, a, b, out var nx, out var ny, out var nz) - reach;
             var u = -Vector3d.Dot(va - vb, new Vector3d(nx, ny, nz));
             if (gap <= ContactSearch.ToleranceAt(Math.Abs(pa.X) + Math.Abs(pa.Y) + Math.Abs(pa.Z)) + (RestingMargin * reach)
                 && u >= 0.0 && !(_particleRestitution * u > _restingSpeed))
@@ -238,6 +239,7 @@ public sealed partial class ContactSet
                 _restObstacle[i] = k;
                 _restTime[i] = s;
                 _restTangent[i] = tangent;
+                _restPoint[i] = q;
             }
 
             _restingOn[i] |= 1UL << k;
@@ -264,7 +266,7 @@ public sealed partial class ContactSet
         _paths.Evaluate(a, s, out var pa, out var va);
         _paths.Evaluate(b, s, out var pb, out var vb);
         var d = pa - pb;
-        _ = SphereObstacle.PointDistance(d.X, d.Y, d.Z, out var nx, out var ny, out var nz);
+        _ = PairNormal.Of(d.X, d.Y, d.Z, a, b, out var nx, out var ny, out var nz);
         var normal = new Vector3d(nx, ny, nz);
         var relative = va - vb;
         var u = -Vector3d.Dot(relative, normal);

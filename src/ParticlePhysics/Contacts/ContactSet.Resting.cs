@@ -14,8 +14,12 @@ public sealed partial class ContactSet
     /// tau = T - s: its end position is put back on the surface and its approaching normal velocity taken out; that
     /// normal velocity change dv_n is the normal impulse per unit mass N tau / m, so friction may take mu dv_n of
     /// tangential velocity, spread evenly over tau as the deceleration f = mu dv_n / tau (<see cref="CoulombSlide"/>),
-    /// along the direction it slid in when it came to rest. Exact on a plane under constant forces: a slide stops
-    /// after v0^2 / (2 mu g), and a particle on an incline sticks exactly when tan(theta) &lt;= mu.
+    /// against the direction it slid in when it came to rest, or, at rest, against the whole applied tangential force.
+    /// The applied tangential acceleration is the integrator's change of tangential velocity over tau (exact under
+    /// constant forces for every integrator), and what the integrator moved since the particle came to rest, relative to
+    /// the obstacle, is replaced along friction's line by the frictional motion, so that on a plane under constant forces,
+    /// under every integrator, a slide stops after v0^2 / (2 mu g) and a particle on an incline sticks exactly when
+    /// tan(theta) &lt;= mu.
     /// </summary>
     private void ApplyRestingFriction(in ConstraintContext context)
     {
@@ -60,18 +64,15 @@ public sealed partial class ContactSet
             var f = obstacle.Friction * Math.Max(-un, 0.0);
             if (f > 0.0 && tau > 0.0)
             {
-                // The tangential velocity at the start of the rest and at the end, in the end's tangent plane.
+                // The tangential velocity at the start of the rest and at the end, and the displacement since the
+                // particle came to rest (relative to the obstacle), in the end's tangent plane.
                 var w0 = _restTangent[i] - (Vector3d.Dot(_restTangent[i], normal) * normal);
                 var w1 = relative - (Vector3d.Dot(relative, normal) * normal);
-                var w0Speed = w0.Length;
-                var direction = w0Speed > 0.0 ? w0 / w0Speed : w1.Length > 0.0 ? w1 / w1.Length : Vector3d.Zero;
-                if (direction != Vector3d.Zero)
-                {
-                    var applied = (Vector3d.Dot(w1, direction) - w0Speed) / tau;
-                    CoulombSlide.Correction(w0Speed, applied, f / tau, tau, out var dw, out var dx);
-                    velocity += dw * direction;
-                    position += dx * direction;
-                }
+                var moved = position - obstacle.OffsetAt(end) - _restPoint[i];
+                moved -= Vector3d.Dot(moved, normal) * normal;
+                CoulombSlide.Correction(w0, w1, f / tau, tau, moved, out var dw, out var dx);
+                velocity += dw;
+                position += dx;
             }
 
             Write(x, i, position);
@@ -199,7 +200,7 @@ public sealed partial class ContactSet
 
         if (_rankedPairs.Length < pairs)
         {
-            _rankedPairs = new int[Math.Max(pairs, 2 * _rankedPairs.Length)];
+            _rankedPairs = new int[Math.Max(pairs, (int)Math.Min(2L * _rankedPairs.Length, DefaultMaxCandidatePairs))];
             _pairsNear = new int[2 * _rankedPairs.Length];
         }
 
@@ -308,20 +309,31 @@ public sealed partial class ContactSet
         return (dx * dx) + (dy * dy) + (dz * dz) <= reach * reach;
     }
 
-    /// <summary>The pairs whose spheres, grown by a quarter of their radius, overlap at the end positions.</summary>
-    private int FindRestingPairs(int n, Span<double> x, Span<double> radii)
+    /// <summary>
+    /// The pairs whose spheres, grown by a quarter of their radius, overlap at the end positions; with
+    /// <paramref name="swept"/>, a particle marked fast has a box over its whole straight move from
+    /// <paramref name="previous"/> (a slow one moved less than its radius, which the quarter radius more covers).
+    /// </summary>
+    private int FindRestingPairs(int n, Span<double> x, Span<double> previous, Span<double> radii, bool swept)
     {
         for (var i = 0; i < n; i++)
         {
             var grow = 1.25 * Radius(radii, i);
+            var fast = swept && _fast[i];
             for (var c = 0; c < 3; c++)
             {
-                _boxMin[(3 * i) + c] = x[(3 * i) + c] - grow;
-                _boxMax[(3 * i) + c] = x[(3 * i) + c] + grow;
+                var end = x[(3 * i) + c];
+                var start = fast ? previous[(3 * i) + c] : end;
+                _boxMin[(3 * i) + c] = Math.Min(start, end) - grow;
+                _boxMax[(3 * i) + c] = Math.Max(start, end) + grow;
             }
         }
 
-        _restingGrid.FindPairs(_boxMin, _boxMax, n, PairFilter);
+        if (!_restingGrid.TryFindPairs(_boxMin, _boxMax, n, PairFilter, _maxCandidatePairs))
+        {
+            RefuseCandidatePairs(n);
+        }
+
         return _restingGrid.PairCount;
     }
 
@@ -344,7 +356,7 @@ public sealed partial class ContactSet
             return 0.0;
         }
 
-        var distance = SphereObstacle.PointDistance(dx, dy, dz, out var nx, out var ny, out var nz);
+        var distance = PairNormal.Of(dx, dy, dz, a, b, out var nx, out var ny, out var nz);
         var overlap = reach - distance;
         var sa = overlap * wa / w;
         var sb = overlap * wb / w;

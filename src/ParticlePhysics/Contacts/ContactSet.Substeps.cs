@@ -10,11 +10,17 @@ namespace ParticlePhysics.Contacts;
 /// <remarks>
 /// <para>
 /// <see cref="Project"/>, once per substep of length h after the prediction: a particle whose predicted move from
-/// outside touched the obstacle grown by its radius (found by the same safe steps along the straight move, so that
-/// nothing tunnels) is held by the tangent plane at the point where it touched: C = (x - x_touch) . n &gt;= 0; one that
-/// was already inside moves by -C n with C = phi(x) - r and n the gradient. Static friction: if the tangential move relative to the obstacle is shorter than mu times
-/// the normal correction, it is undone. Two overlapping particles are pushed apart along their line of centres, each by
-/// its share w_i / (w_a + w_b) of the overlap.
+/// outside touched the obstacle grown by its radius (found by the same safe steps along the straight move relative to
+/// the obstacle, so that nothing tunnels) is held by the tangent plane where it touched, which moves on with the
+/// obstacle: touched at s, C = (x - x_touch - V (h - s)) . n &gt;= 0; one that was already inside moves by -C n with
+/// C = phi(x) - r and n the gradient. Static friction: if the tangential move relative to the obstacle is shorter than
+/// mu times the normal correction, it is undone. Two overlapping particles are pushed apart along their line of
+/// centres, each by its share w_i / (w_a + w_b) of the overlap. A pair one of which moved at least its radius in the
+/// substep is swept: if their straight moves touched, they are held at the plane of that touch instead, so that
+/// particles never pass through each other however fast they close. Each contact is projected once per substep, and a
+/// resting stack sinks by g h^2 a layer in each prediction, so its overlaps are a few g h^2: more substeps shrink them
+/// as h^2 (for small particles at low frame rates they can pass 1 % of the radius; the force-based stage's separation
+/// passes do not have this limit).
 /// </para>
 /// <para>
 /// <see cref="SolveVelocities"/>, after the velocities are taken from the change of positions: dynamic friction takes
@@ -61,7 +67,8 @@ public sealed partial class ContactSet
         _substepEnd = end;
         if (ParticleCollisions)
         {
-            var pairs = FindRestingPairs(n, x, radii);
+            var swept = MarkFastParticles(n, x, previous, radii);
+            var pairs = FindRestingPairs(n, x, previous, radii, swept);
             _pairCount = pairs;
             var first = _restingGrid.First.ForReading();
             var second = _restingGrid.Second.ForReading();
@@ -69,7 +76,9 @@ public sealed partial class ContactSet
             {
                 var a = first[p];
                 var b = second[p];
-                var depth = SeparatePositions(in context, a, b, radii, out var normal);
+                var depth = swept && (_fast[a] || _fast[b])
+                    ? SeparateSweptPositions(in context, a, b, radii, out var normal)
+                    : SeparatePositions(in context, a, b, radii, out normal);
                 if (depth > 0.0)
                 {
                     AddSubstepContact(-1, a, b, normal, depth, Vector3d.Dot(Read(v, a) - Read(v, b), normal));
@@ -103,7 +112,9 @@ public sealed partial class ContactSet
                 if (!(gap < 0.0) || startedOutside)
                 {
                     // It came from outside: the constraint is the tangent plane where its straight move touched (a thin
-                    // wall crossed, or entered deeper than its middle, would otherwise push it out the far side).
+                    // wall crossed, or entered deeper than its middle, would otherwise push it out the far side). The
+                    // plane moves with the obstacle: touched at s, it is at touch + V (h - s) at the substep's end, so
+                    // a moving obstacle carries a particle it met instead of leaving it where they touched.
                     if (Crossed(obstacle, start, position, radius, context.Time, h, out var touch, out var entry))
                     {
                         normal = entry;
@@ -200,7 +211,7 @@ public sealed partial class ContactSet
         var wb = inverseMasses[b];
         var x = context.Positions;
         var d = Read(x, a) - Read(x, b);
-        var distance = SphereObstacle.PointDistance(d.X, d.Y, d.Z, out var nx, out var ny, out var nz);
+        var distance = PairNormal.Of(d.X, d.Y, d.Z, a, b, out var nx, out var ny, out var nz);
         normal = new Vector3d(nx, ny, nz);
         var overlap = Radius(radii, a) + Radius(radii, b) - distance;
         if (!(overlap > 0.0) || wa + wb == 0.0)
@@ -214,8 +225,80 @@ public sealed partial class ContactSet
     }
 
     /// <summary>
+    /// Marks the particles whose straight move over the substep is at least their radius (any move, for a point); true
+    /// if there is one. Two particles whose moves are both shorter than their radii move by less than r_a + r_b
+    /// relative to each other, so they cannot cross: from apart, they end apart or overlapping on the side they came
+    /// from, which the projection at the end handles. Only a pair with a fast particle needs its moves swept.
+    /// </summary>
+    private bool MarkFastParticles(int n, Span<double> x, Span<double> previous, Span<double> radii)
+    {
+        var any = false;
+        for (var i = 0; i < n; i++)
+        {
+            var dx = x[3 * i] - previous[3 * i];
+            var dy = x[(3 * i) + 1] - previous[(3 * i) + 1];
+            var dz = x[(3 * i) + 2] - previous[(3 * i) + 2];
+            var squared = (dx * dx) + (dy * dy) + (dz * dz);
+            var radius = Radius(radii, i);
+            var fast = squared > 0.0 && !(squared < radius * radius);
+            _fast[i] = fast;
+            any |= fast;
+        }
+
+        return any;
+    }
+
+    /// <summary>
+    /// A pair with a fast particle (<see cref="MarkFastParticles"/>), after Crossed for the obstacles: seen from b, the
+    /// straight moves are d(t) = d0 + t (d1 - d0), t in [0, 1] over the substep. Started apart (|d0| &gt;= R), the first
+    /// t with |d(t)| = R, the smaller root of A t^2 + 2 B t + (|d0|^2 - R^2) = 0 (A = |d1 - d0|^2, B = d0 . (d1 - d0)
+    /// &lt; 0), is where they touched, and the constraint is the plane of that contact, C = d1 . n - R &gt;= 0 with
+    /// n = d(t) / R: a pair that crossed is pushed back to the side it came from, where the end's line of centres would
+    /// push it on through. Started overlapping, or never within reach, it is projected as <see cref="SeparatePositions"/> does.
+    /// </summary>
+    private static double SeparateSweptPositions(in ConstraintContext context, int a, int b, Span<double> radii, out Vector3d normal)
+    {
+        var previous = context.StartPositions.ForReading();
+        var x = context.Positions;
+        var reach = Radius(radii, a) + Radius(radii, b);
+        var d0 = Read(previous, a) - Read(previous, b);
+        var d1 = Read(x, a) - Read(x, b);
+        var move = d1 - d0;
+        var apart = Vector3d.Dot(d0, d0) - (reach * reach);
+        var closing = Vector3d.Dot(d0, move);
+        var discriminant = (closing * closing) - (Vector3d.Dot(move, move) * apart);
+        if (!(reach > 0.0) || !(apart >= 0.0) || !(closing < 0.0) || !(discriminant >= 0.0))
+        {
+            return SeparatePositions(in context, a, b, radii, out normal);
+        }
+
+        var t = apart / (Math.Sqrt(discriminant) - closing); // the smaller root, without cancellation
+        if (!(t <= 1.0))
+        {
+            return SeparatePositions(in context, a, b, radii, out normal); // they touch only after the substep
+        }
+
+        var contact = d0 + (t * move);
+        _ = PairNormal.Of(contact.X, contact.Y, contact.Z, a, b, out var nx, out var ny, out var nz);
+        normal = new Vector3d(nx, ny, nz);
+        var inverseMasses = context.InverseMasses.ForReading();
+        var wa = inverseMasses[a];
+        var wb = inverseMasses[b];
+        var overlap = reach - Vector3d.Dot(d1, normal);
+        if (!(overlap > 0.0) || wa + wb == 0.0)
+        {
+            return 0.0;
+        }
+
+        Write(x, a, Read(x, a) + ((overlap * wa / (wa + wb)) * normal));
+        Write(x, b, Read(x, b) - ((overlap * wb / (wa + wb)) * normal));
+        return overlap;
+    }
+
+    /// <summary>
     /// Whether the straight move from <paramref name="start"/> to <paramref name="end"/> over the substep touches the
-    /// obstacle: then the centre where it touches and the normal there.
+    /// obstacle: then where the centre is at the substep's end on the tangent plane it touched, carried along with the
+    /// obstacle since (the touching centre at s plus V (h - s)), and the normal there.
     /// </summary>
     private static bool Crossed(
         Obstacle obstacle, Vector3d start, Vector3d end, double radius, double time, double h, out Vector3d touch, out Vector3d normal)
@@ -232,7 +315,7 @@ public sealed partial class ContactSet
             var rate = (velocity.X * nx) + (velocity.Y * ny) + (velocity.Z * nz);
             if (gap <= ContactSearch.ToleranceAt(Math.Abs(q.X) + Math.Abs(q.Y) + Math.Abs(q.Z)) && rate < 0.0)
             {
-                touch = p;
+                touch = p + ((h - s) * obstacle.Velocity);
                 normal = new Vector3d(nx, ny, nz);
                 return s < h;
             }

@@ -16,7 +16,8 @@ namespace ParticlePhysics.Contacts;
 /// min(|tangential velocity|, mu (1 + e) u) of its tangential velocity (mu: Coulomb friction as an impulse); an impact
 /// whose rebound e u is below <see cref="RestingSpeed"/> does not bounce but rests, held by the normal force N, and
 /// slides with friction mu N until it stops. Between particles the impulse acts along the line of centres and conserves
-/// momentum.
+/// momentum; two particles at exactly the same point (spawned there) separate along a direction taken from their
+/// indices (<see cref="PairNormal"/>), so that a heap spawned at one point opens in every direction.
 /// </para>
 /// <para>
 /// After a force-based integrator (<see cref="Resolve"/>), in stages: (1) each particle's path within the step is the
@@ -45,6 +46,9 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     /// <summary>The default <see cref="RestingSpeed"/>, 0.01 m/s.</summary>
     public const double DefaultRestingSpeed = 0.01;
 
+    /// <summary>The default, and the largest allowed, <see cref="MaxCandidatePairs"/>: 2^26 = 67,108,864.</summary>
+    public const int DefaultMaxCandidatePairs = SpatialHashGrid.MaxPairs;
+
     private readonly List<Obstacle> _obstacles = new();
     private readonly ParticlePaths _paths = new();
     private readonly ImpactQueue _queue = new();
@@ -58,19 +62,23 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     private double _particleRestitution;
     private double _particleFriction;
     private int _projectionIterations = 16;
+    private int _maxCandidatePairs = DefaultMaxCandidatePairs;
     private int _impactCount;
     private int _capacity = -1;
 
     // Per particle: the epoch of its path (bumped by every impulse), the obstacles it rests on (a bit mask), the first
-    // of them with the time it came to rest and its tangential velocity then; the swept box for the broad phase.
+    // of them with the time it came to rest, its tangential velocity and its place relative to the obstacle then; the
+    // swept box for the broad phase.
     private int[] _epoch = Array.Empty<int>();
     private ulong[] _restingOn = Array.Empty<ulong>();
     private int[] _restObstacle = Array.Empty<int>();
     private double[] _restTime = Array.Empty<double>();
     private Vector3d[] _restTangent = Array.Empty<Vector3d>();
+    private Vector3d[] _restPoint = Array.Empty<Vector3d>();
     private double[] _boxMin = Array.Empty<double>();
     private double[] _boxMax = Array.Empty<double>();
     private double[] _sweep = Array.Empty<double>();
+    private bool[] _fast = Array.Empty<bool>(); // under substeps: moved its radius or more in the substep
 
     // The candidate pairs of this step (from the swept grid), whether each came to rest, and each particle's pairs (CSR).
     private int[] _pairFirst = Array.Empty<int>();
@@ -155,6 +163,28 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         }
     }
 
+    /// <summary>
+    /// The most candidate pairs (particles within reach of each other) a step may have, 1 to
+    /// <see cref="DefaultMaxCandidatePairs"/> (the default). The stage's memory grows with the pairs a step finds, about
+    /// 40 bytes a pair (80 while its lists double): 2.7 GB at the default, which 11,600 particles heaped at one point
+    /// reach. A step whose broad phase finds more throws <see cref="InvalidOperationException"/>: the search stops at the
+    /// limit, so nothing past it is allocated, and the world is left as it was. Lower it to fit a host's memory budget.
+    /// </summary>
+    public int MaxCandidatePairs
+    {
+        get => _maxCandidatePairs;
+        set
+        {
+            if (value < 1 || value > DefaultMaxCandidatePairs)
+            {
+                throw new ArgumentOutOfRangeException(
+                    nameof(MaxCandidatePairs), value, $"MaxCandidatePairs must be 1 to {DefaultMaxCandidatePairs}; got {value}.");
+            }
+
+            _maxCandidatePairs = value;
+        }
+    }
+
     /// <summary>The number of impacts the last step (or substep) resolved.</summary>
     public int ImpactCount => _impactCount;
 
@@ -219,6 +249,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
 
     /// <inheritdoc />
     /// <remarks>The stages listed on the class; the end state is corrected in place.</remarks>
+    /// <exception cref="InvalidOperationException">More than <see cref="MaxCandidatePairs"/> candidate pairs.</exception>
     public void Resolve(in ConstraintContext context)
     {
         var n = context.Count;
@@ -266,9 +297,11 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         _restObstacle = new int[n];
         _restTime = new double[n];
         _restTangent = new Vector3d[n];
+        _restPoint = new Vector3d[n];
         _boxMin = new double[3 * n];
         _boxMax = new double[3 * n];
         _sweep = new double[n];
+        _fast = new bool[n];
         _pairsOfStart = new int[n + 1];
         _capacity = n;
     }
@@ -293,13 +326,17 @@ public sealed partial class ContactSet : IStatefulConstraintSet
             }
         }
 
-        _sweptGrid.FindPairs(_boxMin, _boxMax, n, PairFilter);
+        if (!_sweptGrid.TryFindPairs(_boxMin, _boxMax, n, PairFilter, _maxCandidatePairs))
+        {
+            RefuseCandidatePairs(n);
+        }
+
         var first = _sweptGrid.First.ForReading();
         var second = _sweptGrid.Second.ForReading();
         var found = _sweptGrid.PairCount;
         if (_pairFirst.Length < found)
         {
-            var capacity = Math.Max(found, 2 * _pairFirst.Length);
+            var capacity = Math.Max(found, (int)Math.Min(2L * _pairFirst.Length, DefaultMaxCandidatePairs));
             _pairFirst = new int[capacity];
             _pairSecond = new int[capacity];
             _pairResting = new bool[capacity];
@@ -362,6 +399,15 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     /// </summary>
     private bool MayMeet(int i, int j, Span<double> x0, Span<double> radii) =>
         Distance(x0, i, x0, j) <= (1.25 * (Radius(radii, i) + Radius(radii, j))) + _sweep[i] + _sweep[j];
+
+    private void RefuseCandidatePairs(int n)
+    {
+        _pairCount = 0;
+        throw new InvalidOperationException(
+            $"The contact set found more than MaxCandidatePairs = {_maxCandidatePairs} candidate pairs among {n} particles "
+            + "(particles heaped within reach of each other): the search stopped there and the step is refused, with "
+            + $"nothing changed. Spread the particles out, or raise MaxCandidatePairs (at most {DefaultMaxCandidatePairs}, about 40 bytes a pair).");
+    }
 
     private static double Distance(Span<double> a, int i, Span<double> b, int j)
     {

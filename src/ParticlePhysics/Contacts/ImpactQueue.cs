@@ -3,10 +3,16 @@ using System;
 namespace ParticlePhysics.Contacts;
 
 /// <summary>
-/// The impacts still to come within a step, earliest first: a binary min-heap over flat arrays of fixed capacity
-/// (allocated when the particle or pair count grows, never within a step). An entry carries the epochs of its
-/// particles' paths when it was computed; an entry whose particle has since changed course is stale and skipped.
+/// The impacts still to come within a step, earliest first: a binary min-heap over flat arrays that grow by doubling as
+/// entries arrive, up to a limit set per step. An entry carries the epochs of its particles' paths when it was
+/// computed; an entry whose particle has since changed course is stale and skipped.
 /// </summary>
+/// <remarks>
+/// The limit bounds the work of a step (the contact set's budget of impacts), not the memory: the arrays hold what was
+/// queued at once, which in a pile at rest is next to nothing, however many pairs the limit allows. (They were sized to
+/// the limit up front: 16 entries of 24 bytes per candidate pair, 19 GB for 10,000 particles at one point.) Once grown
+/// they stay, so a step allocates nothing after the steps before it have queued as much.
+/// </remarks>
 internal sealed class ImpactQueue
 {
     private double[] _time = Array.Empty<double>();
@@ -14,26 +20,18 @@ internal sealed class ImpactQueue
     private int[] _second = Array.Empty<int>();
     private int[] _firstEpoch = Array.Empty<int>();
     private int[] _secondEpoch = Array.Empty<int>();
+    private int _limit;
 
     /// <summary>The number of queued impacts.</summary>
     public int Count { get; private set; }
 
-    /// <summary>True once a push found the queue full (the impact is then left to the end-of-step projection).</summary>
+    /// <summary>True once a push found the queue at its limit (the impact is then left to the end-of-step projection).</summary>
     public bool Overflowed { get; private set; }
 
-    /// <summary>Makes room for <paramref name="capacity"/> entries and empties the queue.</summary>
-    public void Reset(int capacity)
+    /// <summary>Empties the queue; it then takes up to <paramref name="limit"/> entries at once (grown as they come).</summary>
+    public void Reset(int limit)
     {
-        if (_time.Length < capacity)
-        {
-            capacity = Math.Max(capacity, 2 * _time.Length); // geometric growth: a count that creeps up reallocates rarely
-            _time = new double[capacity];
-            _first = new int[capacity];
-            _second = new int[capacity];
-            _firstEpoch = new int[capacity];
-            _secondEpoch = new int[capacity];
-        }
-
+        _limit = limit;
         Count = 0;
         Overflowed = false;
     }
@@ -47,8 +45,13 @@ internal sealed class ImpactQueue
     {
         if (Count == _time.Length)
         {
-            Overflowed = true;
-            return;
+            if (Count >= _limit)
+            {
+                Overflowed = true;
+                return;
+            }
+
+            Grow();
         }
 
         var k = Count++;
@@ -116,6 +119,17 @@ internal sealed class ImpactQueue
         }
 
         return time;
+    }
+
+    /// <summary>Doubles the arrays (at least 64 entries, at most the limit), keeping the heap.</summary>
+    private void Grow()
+    {
+        var capacity = (int)Math.Min(_limit, Math.Max(64L, 2L * _time.Length));
+        Array.Resize(ref _time, capacity);
+        Array.Resize(ref _first, capacity);
+        Array.Resize(ref _second, capacity);
+        Array.Resize(ref _firstEpoch, capacity);
+        Array.Resize(ref _secondEpoch, capacity);
     }
 
     // Ties are broken by the indices, so that the order, and with it the result, is the same on every run.

@@ -32,6 +32,13 @@ namespace ParticlePhysics.Contacts;
 /// </remarks>
 public sealed class SpatialHashGrid
 {
+    /// <summary>
+    /// The most pairs one <see cref="FindPairs"/> reports: 2^26 (67,108,864; 512 MB for the list). Boxes heaped on
+    /// each other (10,000 at one point make 50 million pairs) can make more pairs than a program can hold; past this
+    /// the search stops and throws instead.
+    /// </summary>
+    public const int MaxPairs = 1 << 26;
+
     private const int LargeFactor = 4;
 
     // Cell coordinates are clamped to 21 bits each (+-1,048,574 cells) so that three pack into one long; clamping
@@ -60,6 +67,7 @@ public sealed class SpatialHashGrid
     private int _ordinaryCount;
     private int _largeCount;
     private int _pairCount;
+    private int _pairLimit;
     private double _cellSize;
 
     /// <summary>The number of pairs the last <see cref="FindPairs"/> found.</summary>
@@ -81,7 +89,21 @@ public sealed class SpatialHashGrid
     /// Finds every pair of overlapping boxes (touching counts) among <paramref name="count"/> boxes, box i being
     /// [min[3i..3i+2], max[3i..3i+2]]; <paramref name="filter"/>, if not null, drops pairs it refuses.
     /// </summary>
+    /// <exception cref="InvalidOperationException">More than <see cref="MaxPairs"/> pairs overlap.</exception>
     public void FindPairs(ReadOnlySpan<double> min, ReadOnlySpan<double> max, int count, IContactPairFilter? filter = null)
+    {
+        if (!TryFindPairs(min, max, count, filter, MaxPairs))
+        {
+            throw new InvalidOperationException(
+                $"More than {MaxPairs} pairs of the {count} boxes overlap (SpatialHashGrid.MaxPairs): too many to list.");
+        }
+    }
+
+    /// <summary>
+    /// The same with a limit of at most <see cref="MaxPairs"/> pairs: false, with the pairs found so far, once more
+    /// would have to be listed (the list never grows past the limit).
+    /// </summary>
+    internal bool TryFindPairs(ReadOnlySpan<double> min, ReadOnlySpan<double> max, int count, IContactPairFilter? filter, int limit)
     {
         if (count < 0 || min.Length < 3 * count || max.Length < 3 * count)
         {
@@ -90,6 +112,7 @@ public sealed class SpatialHashGrid
 
         Build(min.ForReading(), max.ForReading(), count);
         _pairCount = 0;
+        _pairLimit = Math.Min(limit, MaxPairs);
 
         // The ordinary boxes in slot order (the cells' order) when the table is dense, else in index order.
         var visits = _buckets.Dense ? _ordinaryCount : count;
@@ -117,9 +140,10 @@ public sealed class SpatialHashGrid
                 for (var q = _bucketStart[bucket]; q < _bucketStart[bucket + 1]; q++)
                 {
                     var j = _boxOf[q];
-                    if ((offset > 0 || j > i) && _slotCell[q] == cell && Overlap(slot, q))
+                    if ((offset > 0 || j > i) && _slotCell[q] == cell && Overlap(slot, q)
+                        && !Emit(Math.Min(i, j), Math.Max(i, j), filter))
                     {
-                        Emit(Math.Min(i, j), Math.Max(i, j), filter);
+                        return false;
                     }
                 }
             }
@@ -132,12 +156,15 @@ public sealed class SpatialHashGrid
             for (var j = 0; j < count; j++)
             {
                 // Against every ordinary box, and against the large boxes after it (each such pair once).
-                if (j != i && (_slotOf[j] < _ordinaryCount || j > i) && Overlap(slot, _slotOf[j]))
+                if (j != i && (_slotOf[j] < _ordinaryCount || j > i) && Overlap(slot, _slotOf[j])
+                    && !Emit(Math.Min(i, j), Math.Max(i, j), filter))
                 {
-                    Emit(Math.Min(i, j), Math.Max(i, j), filter);
+                    return false;
                 }
             }
         }
+
+        return true;
     }
 
     /// <summary>
@@ -259,16 +286,22 @@ public sealed class SpatialHashGrid
         _bucketStart[0] = 0;
     }
 
-    private void Emit(int i, int j, IContactPairFilter? filter)
+    /// <summary>Lists the pair (i, j) unless the filter refuses it; false when the list is at its limit.</summary>
+    private bool Emit(int i, int j, IContactPairFilter? filter)
     {
         if (filter is not null && !filter.MayCollide(i, j))
         {
-            return;
+            return true;
+        }
+
+        if (_pairCount >= _pairLimit)
+        {
+            return false;
         }
 
         if (_pairCount == _first.Length)
         {
-            var capacity = Math.Max(64, 2 * _first.Length);
+            var capacity = (int)Math.Min(_pairLimit, Math.Max(64L, 2L * _first.Length));
             Array.Resize(ref _first, capacity);
             Array.Resize(ref _second, capacity);
         }
@@ -276,6 +309,7 @@ public sealed class SpatialHashGrid
         _first[_pairCount] = i;
         _second[_pairCount] = j;
         _pairCount++;
+        return true;
     }
 
     /// <summary>Whether the boxes in slots <paramref name="a"/> and <paramref name="b"/> overlap.</summary>

@@ -126,6 +126,7 @@ public sealed class FixedTimestepDriver
     /// <param name="frameTime">The frame's elapsed time in seconds (Unity's Time.deltaTime): finite and &gt;= 0.</param>
     /// <returns>The number of fixed steps run.</returns>
     /// <exception cref="ArgumentOutOfRangeException"><paramref name="frameTime"/> is negative, NaN or infinite.</exception>
+    /// <exception cref="InvalidOperationException">Called from inside the world's own step (a force that advances the driver).</exception>
     /// <exception cref="SimulationDivergedException">
     /// A step diverged. Nothing of the frame is kept: the world, the integrator, the accumulator and the interpolation
     /// are as they were before the call, and the exception's <see cref="SimulationDivergedException.LastFiniteTime"/>
@@ -134,6 +135,9 @@ public sealed class FixedTimestepDriver
     /// <remarks>Any other exception from a step (a force that throws, a solver that gives up) leaves everything as it was too.</remarks>
     public int Advance(double frameTime)
     {
+        // From inside the world's own step (a force that advances its driver) the frame could neither run nor rewind:
+        // refused before the frame's bracket opens.
+        System.ThrowIfStepping();
         Guard.NonNegativeFinite(frameTime, nameof(frameTime));
         if (System.CoordinateCount != _previous.Length)
         {
@@ -249,6 +253,7 @@ public sealed class FixedTimestepDriver
     /// </summary>
     public void ResetInterpolation()
     {
+        System.ThrowIfStepping(); // inside a frame: a failed frame must leave the interpolation as it was
         if (System.CoordinateCount != _previous.Length)
         {
             throw new InvalidOperationException(
@@ -263,6 +268,7 @@ public sealed class FixedTimestepDriver
     /// </summary>
     public void Reset()
     {
+        System.ThrowIfStepping(); // inside a frame: a failed frame must leave the accumulator as it was
         _accumulator = 0.0;
         LastDroppedTime = 0.0;
         ResetInterpolation();

@@ -33,6 +33,7 @@ public sealed class Dampers : IForceGenerator, IBoundForce, IJacobianCouplings, 
     /// <returns>The index of the new damper.</returns>
     public int Add(int first, int second, double damping)
     {
+        _system.ThrowIfStepping();
         Guard.ParticleIndex(first, _system.Count, nameof(first));
         Guard.ParticleIndex(second, _system.Count, nameof(second));
         Guard.DistinctParticles(first, second, nameof(second));
@@ -44,6 +45,7 @@ public sealed class Dampers : IForceGenerator, IBoundForce, IJacobianCouplings, 
     /// <summary>Changes the damping coefficient of a damper (a finite number &gt;= 0, in N s/m).</summary>
     public void SetDamping(int damper, double damping)
     {
+        _system.ThrowIfStepping();
         _pairs.CheckIndex(damper, nameof(damper));
         Guard.NonNegativeFinite(damping, nameof(damping));
         _pairs.Parameters[damper] = damping;

@@ -51,6 +51,7 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian, I
         get => _coefficient;
         set
         {
+            _system?.ThrowIfStepping(); // a drag on named particles knows its world; one on every particle does not
             Guard.NonNegativeFinite(value, nameof(Coefficient));
             _coefficient = value;
         }

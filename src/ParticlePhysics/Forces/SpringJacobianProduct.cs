@@ -23,12 +23,11 @@ namespace ParticlePhysics.Forces;
 /// <para>
 /// The loop runs over runs of consecutive springs that share their first end (a cloth adds its springs particle by
 /// particle): that end's w is loaded once and its sum kept in registers until the run ends, instead of each addition
-/// waiting for the store of the one before (126-131 against 116-117 us per product on the 64 x 64 cloth). The same
-/// additions in the same order (no spring of a run has the run's particle as its second end, and a run cut at a
-/// segment's end stores and reloads its sum exactly). Against the per-spring slots and their gather that the
-/// parallel product used before (each spring's vector written to memory, then read back per particle: two hand-offs),
-/// this writes no slots and hands off once (docs/benchmarks.md, issue 13). The segments are built when the springs,
-/// the particles or the number of parts change, never per product.
+/// waiting for the store of the one before. The same additions in the same order (no spring of a run has the run's
+/// particle as its second end, and a run cut at a segment's end stores and reloads its sum exactly). On a runner it
+/// writes no per-spring slots to gather afterwards, so a product is one pass and one hand-off (docs/benchmarks.md,
+/// issue 13). The segments are built when the springs, the particles or the number of parts change, never per
+/// product.
 /// </para>
 /// </remarks>
 internal sealed unsafe class SpringJacobianProduct : IParallelWork

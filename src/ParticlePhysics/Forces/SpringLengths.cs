@@ -11,14 +11,13 @@ namespace ParticlePhysics.Forces;
 /// where the runtime accelerates System.Numerics.Vector (CoreCLR), takes them several springs at a time. The
 /// linearisation runs over blocks of <see cref="Block"/> springs: this first, then its own arithmetic with l and
 /// 1 / l read back (the same operations, so the same bits). The force loop alone, a third as long, overlaps enough
-/// by itself: split the same way it ran no faster (258 against 258 us on the 64 x 64 cloth).
+/// by itself and is not split (docs/benchmarks.md, issue 13).
 /// </summary>
 internal static unsafe class SpringLengths
 {
     /// <summary>
-    /// The springs per block. Measured on the 64 x 64 cloth's spring loop of the fused forces and linearisation
-    /// (23 938 springs, one core, the fastest of 40 alternating rounds): 504 us in one loop; in blocks of 16, 32, 64
-    /// and 128 springs 410, 409, 403 and 405 us.
+    /// The springs per block: enough for the processor to overlap their square roots and divisions; blocks of 16 to
+    /// 128 springs run alike (the split itself: docs/benchmarks.md, issue 13).
     /// </summary>
     public const int Block = 64;
 
@@ -32,8 +31,7 @@ internal static unsafe class SpringLengths
     /// The squared lengths first, spring by spring (each gathers its two ends), then the square roots and divisions
     /// over the block: with SIMD where the runtime accelerates it, a plain loop otherwise. A square root and a division
     /// are correctly rounded in IEEE 754 whether one value or several are taken at once, so both paths give the same
-    /// bits. On the 64 x 64 cloth (23 938 springs, one core): 75 us a pass with the square root and division in the
-    /// gathering loop, 42 us with them four at a time (docs/benchmarks.md, issue 13).
+    /// bits.
     /// </remarks>
     public static void Compute(double* x, int* first, int* second, int begin, int end, double* roots)
     {

@@ -78,6 +78,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     /// <returns>The index of the new spring among the particle-particle springs.</returns>
     public int Add(int first, int second, double stiffness)
     {
+        _system.ThrowIfStepping();
         Guard.ParticleIndex(first, _system.Count, nameof(first));
         Guard.ParticleIndex(second, _system.Count, nameof(second));
         Guard.DistinctParticles(first, second, nameof(second));
@@ -94,6 +95,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     /// <returns>The index of the new spring among the anchored springs.</returns>
     public int AddAnchored(int particle, Vector3d anchor, double stiffness)
     {
+        _system.ThrowIfStepping();
         Guard.ParticleIndex(particle, _system.Count, nameof(particle));
         Guard.Finite(anchor, nameof(anchor));
         Guard.NonNegativeFinite(stiffness, nameof(stiffness));
@@ -122,6 +124,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     /// <summary>Changes the stiffness of a particle-particle spring.</summary>
     public void SetStiffness(int spring, double stiffness)
     {
+        _system.ThrowIfStepping();
         _pairs.CheckIndex(spring, nameof(spring));
         Guard.NonNegativeFinite(stiffness, nameof(stiffness));
         _pairs.Parameters[spring] = stiffness;
@@ -131,6 +134,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     /// <summary>Moves the anchor of an anchored spring (to attach a particle to a point that the host moves).</summary>
     public void SetAnchor(int spring, Vector3d anchor)
     {
+        _system.ThrowIfStepping();
         _anchored.CheckIndex(spring, nameof(spring));
         Guard.Finite(anchor, nameof(anchor));
         _anchored.Parameters[4 * spring] = anchor.X;

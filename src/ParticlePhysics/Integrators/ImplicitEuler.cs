@@ -1,6 +1,6 @@
 using System;
+using ParticlePhysics.Integrators.Multigrid;
 using ParticlePhysics.Numerics;
-using ParticlePhysics.Parallel;
 
 namespace ParticlePhysics.Integrators;
 
@@ -239,13 +239,11 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         // multigrid, with the products q_a ~ A u_a that the last solves left behind (each one's b - r, with its own
         // step's matrix: no product is spent here), the start sum c_a u_a in the span of the last four that satisfies
         // the Galerkin conditions u_j . (b - sum c_a q_a) = 0 (one pass for the sums, a 4 x 4 solve; fewer steps when
-        // the system is singular, the extrapolation when none is left). Measured (docs/benchmarks.md, "The warm
-        // start from the last four steps"): on the 64 x 64 cloth's first second, 7.10 iterations per frame at 1e-3
-        // with the last two steps (7.55 with the extrapolation), 6.83 with four, and 20.98 and 17.10 at 1e-6; over ten
-        // cases 6038 iterations with two, 5433 with four. Under block Jacobi the plane of two took 15 % more (the
-        // energy it removes is in the stiff components, which block Jacobi damps anyway), hence not there.
-        // Pinned components are always 0. The committed warm start is only read here: a step that fails leaves it as
-        // it was (CommitStep moves dv and its product in).
+        // the system is singular, the extrapolation when none is left): it removes the error in the span of those
+        // steps, where the smooth part of the motion lies. Not under block Jacobi: the error it removes there is in the
+        // stiff components, which block Jacobi damps anyway (docs/benchmarks.md, "The warm start" and "The warm start
+        // from the last four steps"). Pinned components are always 0. The committed warm start is only read here: a
+        // step that fails leaves it as it was (CommitStep moves dv and its product in).
         var known = WarmStart && _history.Length == n ? _history.Known : 0;
         var knownProducts = known > 0 ? Math.Min(_history.KnownProducts, known) : 0;
         // The start from the products is the multigrid's, so only its steps keep their products; taken before the
@@ -295,22 +293,20 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         var target = _tolerance * rhsNorm;
         if (residualNorm > target && _maxIterations > 0)
         {
-            var gamma = Precondition(passes, ref multigrid, runner);
+            var gamma = Precondition(passes, ref multigrid);
             var delta = ApplySystemMatrix(system, tail, passes, time, end);
             var alpha = gamma / delta;
             var beta = 0.0;
             while (delta > 0.0)
             {
-                residualNorm = Math.Sqrt(multigrid
-                    ? _multigrid!.BeginApply(passes, alpha, beta, update: true, runner)
-                    : passes.Update(alpha, beta));
+                residualNorm = Math.Sqrt(multigrid ? passes.UpdateAndRestrict(_multigrid!, alpha, beta) : passes.Update(alpha, beta));
                 iterations++;
                 if (residualNorm <= target || iterations >= _maxIterations || !DoubleChecks.IsFinite(residualNorm))
                 {
                     break;
                 }
 
-                var gammaNext = multigrid ? _multigrid!.FinishApply(passes, runner) : passes.LastJacobiProduct;
+                var gammaNext = multigrid ? passes.CycleAndProlong(_multigrid!) : passes.LastJacobiProduct;
                 var restart = false;
                 if (multigrid && !(gammaNext > 0.0))
                 {
@@ -381,9 +377,9 @@ public sealed class ImplicitEuler : IStatefulIntegrator
 
     /// <summary>
     /// Solves the leading m x m block of the Gram matrix (row stride <paramref name="stride"/>) against the
-    /// projections into <see cref="_startCoefficients"/>, by <see cref="LuSolve"/>; false when a pivot is at most 1e-12
-    /// of the block's largest entry, when m = 1 and u . q is not positive (u . q ~ u . A u must be, A being positive
-    /// definite, else the product is not to be trusted), or when a coefficient is not finite.
+    /// projections into <see cref="_startCoefficients"/>, by LU (<see cref="DenseLinearSolver.SolveLu"/>); false when
+    /// a pivot is at most 1e-12 of the block's largest entry, when m = 1 and u . q is not positive (u . q ~ u . A u
+    /// must be, A being positive definite, else the product is not to be trusted), or when a coefficient is not finite.
     /// </summary>
     private bool SolveGalerkin(int m, int stride)
     {
@@ -399,7 +395,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
             _startCoefficients[i] = _projections[i];
         }
 
-        if ((m == 1 && !(_elimination[0] > 0.0)) || !LuSolve(_elimination, _eliminationPivots, _startCoefficients, m, 1e-12 * scale))
+        if ((m == 1 && !(_elimination[0] > 0.0)) || !DenseLinearSolver.SolveLu(_elimination, _eliminationPivots, _startCoefficients, m, 1e-12 * scale))
         {
             return false;
         }
@@ -419,12 +415,12 @@ public sealed class ImplicitEuler : IStatefulIntegrator
     /// z = P r with the multigrid, or block Jacobi (also when the multigrid is not positive along r: a force whose
     /// couplings are not of pair form); returns r . z, summed in chunk order.
     /// </summary>
-    private double Precondition(ConjugateGradientPasses passes, ref bool multigrid, IParallelRunner? runner)
+    private double Precondition(ConjugateGradientPasses passes, ref bool multigrid)
     {
         if (multigrid)
         {
-            _ = _multigrid!.BeginApply(passes, 0.0, 0.0, update: false, runner);
-            var rz = _multigrid.FinishApply(passes, runner);
+            passes.Restrict(_multigrid!);
+            var rz = passes.CycleAndProlong(_multigrid!);
             if (rz > 0.0)
             {
                 return rz;
@@ -534,7 +530,7 @@ public sealed class ImplicitEuler : IStatefulIntegrator
                 delta[i] = -(y[i] - y0[i] - (h * f[i]));
             }
 
-            if (!LuSolve(matrix, pivots, delta, n))
+            if (!DenseLinearSolver.SolveLu(matrix, pivots, delta, n))
             {
                 break;
             }
@@ -557,64 +553,5 @@ public sealed class ImplicitEuler : IStatefulIntegrator
         LastResidual = update;
         LastConverged = update <= NewtonTolerance;
         y.AsSpan().CopyTo(next);
-    }
-
-    /// <summary>
-    /// Solves A x = b in place by Gaussian elimination with partial pivoting (A n x n row-major, overwritten by its LU
-    /// factors; b becomes x). False if a pivot's magnitude is at most <paramref name="smallestPivot"/> (0: singular).
-    /// </summary>
-    private static bool LuSolve(double[] a, int[] pivots, double[] b, int n, double smallestPivot = 0.0)
-    {
-        for (var col = 0; col < n; col++)
-        {
-            var pivot = col;
-            for (var row = col + 1; row < n; row++)
-            {
-                if (Math.Abs(a[(row * n) + col]) > Math.Abs(a[(pivot * n) + col]))
-                {
-                    pivot = row;
-                }
-            }
-
-            if (Math.Abs(a[(pivot * n) + col]) <= smallestPivot)
-            {
-                return false;
-            }
-
-            pivots[col] = pivot;
-            if (pivot != col)
-            {
-                for (var k = 0; k < n; k++)
-                {
-                    (a[(col * n) + k], a[(pivot * n) + k]) = (a[(pivot * n) + k], a[(col * n) + k]);
-                }
-
-                (b[col], b[pivot]) = (b[pivot], b[col]);
-            }
-
-            for (var row = col + 1; row < n; row++)
-            {
-                var factor = a[(row * n) + col] / a[(col * n) + col];
-                for (var k = col; k < n; k++)
-                {
-                    a[(row * n) + k] -= factor * a[(col * n) + k];
-                }
-
-                b[row] -= factor * b[col];
-            }
-        }
-
-        for (var row = n - 1; row >= 0; row--)
-        {
-            var sum = b[row];
-            for (var k = row + 1; k < n; k++)
-            {
-                sum -= a[(row * n) + k] * b[k];
-            }
-
-            b[row] = sum / a[(row * n) + row];
-        }
-
-        return true;
     }
 }

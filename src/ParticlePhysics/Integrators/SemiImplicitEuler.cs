@@ -12,9 +12,10 @@ namespace ParticlePhysics.Integrators;
 /// Derivation: explicit Euler on v, implicit Euler on x. The map is symplectic, so on a conservative system it
 /// conserves a modified energy within O(h): the energy of an undamped oscillator stays bounded forever instead of
 /// growing. Global error O(h) (order 1). Stability: an oscillator of angular frequency omega needs h omega &lt; 2.
-/// Needs an <see cref="ISecondOrderSystem"/>.
+/// Needs an <see cref="ISecondOrderSystem"/>. A kick and a drift (<see cref="IKickDriftIntegrator"/>): rods then close
+/// each step as SHAKE does, so that their energy stays bounded too.
 /// </remarks>
-public sealed class SemiImplicitEuler : IIntegrator
+public sealed class SemiImplicitEuler : IKickDriftIntegrator
 {
     private double[]? _acceleration;
 

@@ -48,14 +48,9 @@ public sealed class Xpbd : IPositionBasedIntegrator
     private const int MinParticlesPerChunk = 1024;
 
     // The prediction only from this many particles per chunk. It comes right after the world's accelerations, which run
-    // on the calling thread, so the runner's workers may have gone to sleep by then, and waking one costs more than half
-    // a pass of about 2 ns per particle saves: on the 64 x 64 cloth with WorkerThreadRunner(2) at its first spin limit
-    // (50 us) the split prediction took 28 to 55 us per substep on average against 8 to 9 us on one thread. Left on the
-    // calling thread, the prediction lets the projection's first phase wake the worker while the calling thread already
-    // projects. (The velocity pass follows the projection's last phase, with the worker still awake.) At the 200 us
-    // spin limit the workers are awake: on the 128 x 128 cloth the prediction split in two (8192 particles per chunk)
-    // made two threads 1.68x to 1.96x faster than one (medians of `xpbd --cores`, three runs) against 1.47x to 1.60x
-    // kept whole; at 64 x 64 (2 chunks of 2048) the runs could not tell the two apart, so it stays whole there.
+    // on the calling thread, so a worker may have to be woken, which costs more than half a small pass saves; left on
+    // the calling thread, the prediction lets the projection's first phase wake the worker while the calling thread
+    // already projects. From 8192 particles per chunk (the 128 x 128 cloth) half the pass saves more than that.
     private const int MinParticlesPerPredictionChunk = 8192;
 
     private int _substeps = DefaultSubsteps;

@@ -48,15 +48,17 @@ public class NamespaceLayeringTests
     public void The_architecture_page_names_every_namespace_and_allows_every_use()
     {
         // docs/architecture.md has a table: | `Folder/` (or root) | what lives there | may use |. The tree and the
-        // page must agree: every namespace of the assembly has a row, and every use is one its row allows.
+        // page must agree: every namespace of the assembly has a row, and every use is one its row allows. A folder
+        // inside a folder (`Integrators/Multigrid/`) is the namespace ParticlePhysics.Integrators.Multigrid.
         var page = File.ReadAllText(Path.Combine(ReadmeExamplesTests.RepositoryRoot(), "docs", "architecture.md"));
         var allowed = new Dictionary<string, HashSet<string>>();
-        foreach (Match row in Regex.Matches(page, @"^\| (root \(`ParticlePhysics`\)|`(\w+)/`) \|[^|]*\| ([^|]*) \|$", RegexOptions.Multiline))
+        static string Namespace(string folder) => "ParticlePhysics." + folder.Replace('/', '.');
+        foreach (Match row in Regex.Matches(page, @"^\| (root \(`ParticlePhysics`\)|`([\w/]+)/`) \|[^|]*\| ([^|]*) \|$", RegexOptions.Multiline))
         {
-            var name = row.Groups[2].Success ? "ParticlePhysics." + row.Groups[2].Value : "ParticlePhysics";
+            var name = row.Groups[2].Success ? Namespace(row.Groups[2].Value) : "ParticlePhysics";
             var uses = row.Groups[3].Value.Split(',').Select(u => u.Trim())
                 .Where(u => u.Length > 0 && u != "nothing of the core")
-                .Select(u => u == "root" ? "ParticlePhysics" : "ParticlePhysics." + u);
+                .Select(u => u == "root" ? "ParticlePhysics" : Namespace(u));
             allowed[name] = new HashSet<string>(uses);
         }
 

@@ -42,6 +42,55 @@ public class XpbdTests
     }
 
     [Theory]
+    [InlineData(1e3, false)]
+    [InlineData(1e9, false)]
+    [InlineData(1e300, false)]
+    [InlineData(double.MaxValue, false)]
+    [InlineData(1e300, true)]
+    [InlineData(double.MaxValue, true)]
+    public void A_spring_on_a_light_particle_tends_to_the_rigid_projection_as_k_grows(double stiffness, bool pair)
+    {
+        // Issue 27, item 10: on a 1e-6 kg particle, k = double.MaxValue made (k h^2 + c h) w overflow: the denominator
+        // was infinite, the correction 0, and the spring 5 m long after 1 s of free fall instead of 1 m. The length
+        // after 1 s hanging at 60 Hz is 1 + m g / k, the rigid rod's 1 m in the limit.
+        const double mass = 1e-6;
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(0, -1, 0), mass);
+        world.AddParticle(Vector3d.Zero, mass);
+        world.Pin(1);
+        var springs = new SpringNetwork(world);
+        if (pair)
+        {
+            springs.Add(0, 1, stiffness, 1, 0.0);
+        }
+        else
+        {
+            springs.AddAnchored(0, Vector3d.Zero, stiffness, 1, 0.0);
+        }
+
+        world.AddForce(springs);
+        world.AddForce(new Gravity());
+        world.AddConstraints(new SpringProjection(springs));
+        StateMetrics.Run(world, new Xpbd(), 1.0 / 60, 60);
+        var length = world.GetPosition(0).Length;
+        var expected = 1 + (mass * 9.81 / stiffness);
+        Assert.True(Math.Abs(length - expected) < 1e-9, $"k = {stiffness:R}: length {length:R} m, expected {expected:R}");
+
+        // At k = double.MaxValue the spring is the rod of xpbd's compliance 0, to rounding.
+        if (stiffness == double.MaxValue)
+        {
+            var rod = new ParticleWorld();
+            rod.AddParticle(new Vector3d(0, -1, 0), mass);
+            var rods = new RodNetwork(rod);
+            rods.AddAnchoredRod(0, Vector3d.Zero, 1);
+            rod.AddConstraints(rods);
+            rod.AddForce(new Gravity());
+            StateMetrics.Run(rod, new Xpbd(), 1.0 / 60, 60);
+            Assert.True((rod.GetPosition(0) - world.GetPosition(0)).Length < 1e-12, $"{rod.GetPosition(0)} vs {world.GetPosition(0)}");
+        }
+    }
+
+    [Theory]
     [InlineData(50)]
     [InlineData(1e4)]
     [InlineData(1e7)]

@@ -105,6 +105,22 @@ public class BroadPhaseTests
         Assert.Equal(0, grid.PairCount);
     }
 
+    [Fact]
+    public void A_search_with_a_limit_stops_there_and_says_so()
+    {
+        // 40 boxes at one point: 780 pairs. The list never grows past the limit (the contact set's MaxCandidatePairs).
+        var min = new double[120];
+        var max = Enumerable.Repeat(1.0, 120).ToArray();
+        var grid = new SpatialHashGrid();
+        Assert.False(grid.TryFindPairs(min, max, 40, null, 779));
+        Assert.Equal(779, grid.PairCount);
+        Assert.True(grid.TryFindPairs(min, max, 40, null, 780));
+        Assert.Equal(780, grid.PairCount);
+        Assert.True(grid.TryFindPairs(min, max, 40, null, SpatialHashGrid.MaxPairs));
+        Assert.False(grid.TryFindPairs(min, max, 40, null, 100)); // a lower limit holds though the list is longer
+        Assert.Equal(100, grid.PairCount);
+    }
+
     /// <summary>Unit boxes on a lattice of spacing 0.9 (so that neighbours, diagonals included, overlap), in a shuffled order.</summary>
     private static (double[] Min, double[] Max) ShuffledLattice(int nx, int ny, int nz, out int count)
     {

@@ -53,6 +53,62 @@ public class ContactStageTests
     }
 
     [Fact]
+    public void A_step_allocates_in_proportion_to_the_pairs_it_finds_not_sixteen_queue_entries_per_pair()
+    {
+        // Issue 27, item 7: 10,000 particles at one point (50 million candidate pairs) ran out of memory, because the
+        // impact queue was sized at 16 entries per candidate pair up front (24 bytes each: 384 bytes a pair), though
+        // a pile at rest queues almost nothing. The stage's buffers indexed by pair take about 40 bytes a pair (the
+        // grid's list, the pairs, each particle's pairs, the shock pass's ranks), twice that while they double.
+        const int count = 600;
+        var world = new ParticleWorld();
+        for (var i = 0; i < count; i++)
+        {
+            world.AddParticle(new Vector3d(0, 1, 0), 1);
+            world.SetRadius(i, 0.01);
+        }
+
+        var contacts = new ContactSet { ParticleCollisions = true };
+        world.AddConstraints(contacts);
+        var rk4 = new RungeKutta4();
+        var before = GC.GetAllocatedBytesForCurrentThread();
+        world.Step(rk4, 1.0 / 60.0);
+        var allocated = GC.GetAllocatedBytesForCurrentThread() - before;
+        var pairs = count * (count - 1) / 2;
+        Assert.Equal(pairs, contacts.CandidatePairCount);
+        Assert.True(allocated < 128L * pairs, $"{allocated} bytes for {pairs} pairs: {(double)allocated / pairs:F0} a pair");
+    }
+
+    [Fact]
+    public void A_step_that_would_pass_the_candidate_pair_limit_is_refused_with_nothing_changed()
+    {
+        var world = new ParticleWorld();
+        for (var i = 0; i < 100; i++)
+        {
+            world.AddParticle(new Vector3d(0, 1, 0), 1);
+            world.SetRadius(i, 0.01);
+        }
+
+        var contacts = new ContactSet { ParticleCollisions = true, MaxCandidatePairs = 4949 };
+        world.AddConstraints(contacts);
+        var before = world.State.ToArray();
+        foreach (var stepper in new IIntegrator[] { new RungeKutta4(), new Xpbd() })
+        {
+            var refusal = Assert.Throws<InvalidOperationException>(() => world.Step(stepper, 1.0 / 60.0));
+            Assert.Contains("MaxCandidatePairs", refusal.Message);
+            Assert.Contains("4949", refusal.Message);
+            Assert.Equal(before, world.State.ToArray());
+            Assert.Equal(0.0, world.Time);
+            Assert.Equal(0, contacts.CandidatePairCount);
+        }
+
+        contacts.MaxCandidatePairs = 4950;
+        world.Step(new RungeKutta4(), 1.0 / 60.0);
+        Assert.Equal(4950, contacts.CandidatePairCount);
+        Assert.Throws<ArgumentOutOfRangeException>(() => contacts.MaxCandidatePairs = 0);
+        Assert.Throws<ArgumentOutOfRangeException>(() => contacts.MaxCandidatePairs = ContactSet.DefaultMaxCandidatePairs + 1);
+    }
+
+    [Fact]
     public void A_repeated_run_gives_bit_identical_states()
     {
         static string Run()

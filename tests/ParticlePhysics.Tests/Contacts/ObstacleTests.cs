@@ -62,6 +62,35 @@ public class ObstacleTests
         Assert.Equal(1.0, box.SignedDistance(new Vector3d(Math.Sqrt(2), Math.Sqrt(2), 0), out _), 12);
     }
 
+    [Fact]
+    public void A_box_takes_any_finite_axes_that_are_not_parallel_however_short_or_long()
+    {
+        // Issue 27, item 11: the parallel test multiplied by |axisY|, which underflows to 0 at 1e-200 and overflows to
+        // infinity at 3e200, so both were called parallel to (1, 0, 0).
+        var box = new BoxObstacle(Vector3d.Zero, new Vector3d(1, 2, 3));
+        var cases = new (Vector3d X, Vector3d Y, Vector3d ExpectedY)[]
+        {
+            (new Vector3d(1, 0, 0), new Vector3d(0, 1e-200, 0), new Vector3d(0, 1, 0)),
+            (new Vector3d(1, 0, 0), new Vector3d(0, 3e200, 0), new Vector3d(0, 1, 0)),
+            (new Vector3d(1, 0, 0), new Vector3d(5e-324, 5e-324, 0), new Vector3d(0, 1, 0)),
+            (new Vector3d(1, 0, 0), new Vector3d(1.7e308, -1.7e308, 0), new Vector3d(0, -1, 0)),
+            (new Vector3d(0, 0, 1e-300), new Vector3d(0, 1e300, 1e300), new Vector3d(0, 1, 0)),
+        };
+        foreach (var (x, y, expectedY) in cases)
+        {
+            box.SetOrientation(x, y);
+            Assert.Equal(expectedY, box.AxisY);
+            Assert.Equal(Vector3d.Cross(box.AxisX, box.AxisY), box.AxisZ);
+        }
+
+        // Parallel axes are still refused, whatever their lengths, and nothing changes.
+        foreach (var y in new[] { new Vector3d(1e-200, 0, 0), new Vector3d(-3e200, 0, 0), new Vector3d(1, 1e-13, 0) })
+        {
+            Assert.Equal("axisY", Assert.Throws<ArgumentOutOfRangeException>(() => box.SetOrientation(new Vector3d(1, 0, 0), y)).ParamName);
+            Assert.Equal(new Vector3d(0, 1, 0), box.AxisY);
+        }
+    }
+
     [Theory]
     [InlineData("explicit-euler")]
     [InlineData("semi-implicit-euler")]

@@ -58,6 +58,63 @@ public class PileTests
         Assert.True(worst < 0.01, $"overlap {worst:P3} of the radius");
     }
 
+    [Theory]
+    [InlineData(100, 0.5)]
+    [InlineData(50, 0.5)]
+    [InlineData(100, 0.0)]
+    [InlineData(50, 0.0)]
+    public void Particles_spawned_at_one_point_separate_and_settle_without_jitter(int count, double mu)
+    {
+        // Issue 27, item 8: 100 particles spawned at one point, semi-implicit Euler at 60 Hz: after 10 s (and 20 s) they
+        // still overlapped by the whole radius, 25 pairs exactly coincident, and the kinetic energy churned. Every
+        // coincident pair was pushed apart along +y, so they could only ever spread into a column (50 did, and stood).
+        const double r = 0.01;
+        var world = new ParticleWorld();
+        for (var i = 0; i < count; i++)
+        {
+            world.AddParticle(new Vector3d(0, 0.5, 0), 1);
+            world.SetRadius(i, r);
+        }
+
+        world.AddForce(Forces.Gravity.Down(9.81));
+        var contacts = new ContactSet { ParticleCollisions = true, ParticleFriction = mu };
+        contacts.Add(PlaneObstacle.Ground(0, mu));
+        world.AddConstraints(contacts);
+        FrictionTests.StepFor(world, "semi-implicit-euler", 1.0 / 60.0, 10.0);
+        var settled = world.State.ToArray();
+        var energy = 0.0;
+        foreach (var time in new[] { 10, 20 })
+        {
+            if (time == 20)
+            {
+                FrictionTests.StepFor(world, "semi-implicit-euler", 1.0 / 60.0, 10.0);
+            }
+
+            var overlap = Pile.WorstOverlap(world, contacts) / r;
+            Assert.True(overlap < 0.01, $"{count} particles at {time} s: overlap {overlap:P2} of the radius");
+            Assert.True(Enumerable.Range(0, count).All(i => world.GetPosition(i).Y >= r - 1e-6), "below the ground");
+            Assert.True(Enumerable.Range(0, count).All(i => Math.Abs(world.GetVelocity(i).Y) < 1e-9), "bouncing");
+            var kinetic = Enumerable.Range(0, count).Sum(i => 0.5 * world.Masses[i] * Vector3d.Dot(world.GetVelocity(i), world.GetVelocity(i)));
+            if (mu > 0)
+            {
+                Assert.True(kinetic == 0.0, $"{count} particles at {time} s: {kinetic} J of kinetic energy");
+            }
+            else
+            {
+                // Without friction nothing stops them sliding apart on the ground; nothing may speed them up either.
+                Assert.True(time == 10 || kinetic <= energy, $"{count} particles: {energy} J at 10 s, {kinetic} J at 20 s");
+                energy = kinetic;
+            }
+        }
+
+        if (mu > 0)
+        {
+            // Still from 10 s to 20 s, to the rounding of a coordinate near the ground.
+            var moved = Enumerable.Range(0, 6 * count).Max(k => Math.Abs(world.State[k] - settled[k]));
+            Assert.True(moved < 1e-12, $"moved {moved} between 10 s and 20 s");
+        }
+    }
+
     [Fact]
     public void A_column_of_ten_rests_without_jitter_even_at_60_Hz()
     {

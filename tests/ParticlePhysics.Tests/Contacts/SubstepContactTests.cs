@@ -180,6 +180,51 @@ public class XpbdContactTests
         Assert.True(Math.Abs(world.GetVelocity(0).Y) < 1e-3);
     }
 
+    public static TheoryData<string, string, double> MovingObstacles()
+    {
+        var data = new TheoryData<string, string, double>();
+        foreach (var integrator in ParticlePhysics.Integrators.IntegratorCatalog.Names)
+        {
+            data.Add(integrator, "box", 20);
+            data.Add(integrator, "box", 1e4);
+            data.Add(integrator, "sphere", 50);
+        }
+
+        return data;
+    }
+
+    [Theory]
+    [MemberData(nameof(MovingObstacles))]
+    public void A_moving_thin_obstacle_carries_a_resting_particle_along_instead_of_passing_through_it(string integrator, string shape, double speed)
+    {
+        // Issue 27, item 6: under xpbd a 2 mm box at 20 m/s (or 1e4 m/s), or a 5 cm sphere at 50 m/s, passed through a
+        // particle at rest and left it at x = 0: the particle was held at the point where it touched, which stood still
+        // while the obstacle moved on. With e = 0 the obstacle must carry it on its front face at its own speed.
+        const double r = 0.01;
+        var world = new ParticleWorld();
+        world.AddParticle(Vector3d.Zero, 1);
+        world.SetRadius(0, r);
+        Obstacle obstacle = shape == "box"
+            ? new BoxObstacle(new Vector3d(-1, 0, 0), new Vector3d(0.001, 1, 1))
+            : new SphereObstacle(new Vector3d(-1, 0, 0), 0.05);
+        obstacle.Velocity = new Vector3d(speed, 0, 0);
+        var contacts = new ContactSet();
+        contacts.Add(obstacle);
+        world.AddConstraints(contacts);
+        var stepper = ParticlePhysics.Integrators.IntegratorCatalog.Create(integrator);
+        var front = shape == "box" ? 0.001 : 0.05;
+        for (var step = 1; step <= 30; step++)
+        {
+            world.Step(stepper, 1.0 / 60.0);
+            var face = obstacle.ShapeAt(world.Time).Center.X + front;
+            if (face > -r)
+            {
+                Assert.True(world.GetPosition(0).X >= face + r - 1e-6, $"step {step}: the particle at {world.GetPosition(0)} is behind the face at {face}");
+                Assert.True(Math.Abs(world.GetVelocity(0).X - speed) <= 1e-9 * speed, $"step {step}: moving at {world.GetVelocity(0)}");
+            }
+        }
+    }
+
     [Fact]
     public void Under_xpbd_nothing_crosses_a_thin_wall_and_the_draped_cloth_stays_out_of_the_sphere()
     {

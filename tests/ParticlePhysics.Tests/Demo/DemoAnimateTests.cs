@@ -205,7 +205,7 @@ public sealed partial class DemoAnimateTests : IDisposable
     {
         var setup = new ClothSetup("cloth", () => throw new InvalidOperationException("not run"), side) { TableColumnList = new[] { "t", "min_y" } };
         var plan = new RunPlan("rk4", 0.001, RunPlan.StepsFor(duration, 0.001), 1, 1e-8);
-        var recorder = new ReplayRecorder(setup, plan);
+        var recorder = new ReplayRecorder(setup, setup.ParticleCount, plan);
 
         var frames = Enumerable.Range(0, plan.Steps + 1).Count(recorder.Wants);
 

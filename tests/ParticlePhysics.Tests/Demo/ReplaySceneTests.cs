@@ -81,7 +81,7 @@ public sealed class ReplaySceneTests
         world.AddParticle(new Vector3d(1, 0, 0), 1);
         var setup = new ParticleSetup("two", () => world, 2, exact: null) { TableColumnList = new[] { "t", "energy" } };
         var plan = new RunPlan("rk4", 0.5, 2, 1, 1e-8);
-        var recorder = new ReplayRecorder(setup, plan);
+        var recorder = new ReplayRecorder(setup, setup.ParticleCount, plan);
         var row = new double[setup.Columns.Count];
         row[4] = 1; // x1
         foreach (var step in Enumerable.Range(0, 3))

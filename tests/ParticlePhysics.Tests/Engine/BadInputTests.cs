@@ -176,7 +176,7 @@ public class BadInputTests
         system.Pin(0);
         AssertRejected(system, "duration", 0.0, () => system.MoveKinematic(0, Vector3d.Zero, 0));
         AssertRejected(system, "target", null, () => system.MoveKinematic(0, new Vector3d(double.NaN, 0, 0), 0.1));
-        AssertRejected(system, "target", null, () => system.MoveKinematic(0, new Vector3d(1e300, 0, 0), 1e-300));
+        AssertRejected(system, "duration", 1e-300, () => system.MoveKinematic(0, new Vector3d(1e300, 0, 0), 1e-300));
         AssertRejected(system, "velocity", null, () => system.Pin(0, new Vector3d(0, double.PositiveInfinity, 0)));
         AssertRejected(system, "index", 2, () => system.MoveKinematic(2, Vector3d.Zero, 1));
     }

@@ -37,6 +37,55 @@ public class NewApiBadInputTests
         rods.AddRod(0, 1, 5.6e-309); // the smallest such length is accepted
     }
 
+    [Theory]
+    [InlineData(1e160)]
+    [InlineData(1.35e154)]
+    [InlineData(double.MaxValue)]
+    public void A_rod_or_cable_length_whose_square_overflows_is_refused_like_a_capsule(double length)
+    {
+        // Issue 27, item 9: AddAnchoredRod(p, anchor, 1e160) with the particle exactly that far was accepted, then every
+        // rk4 and xpbd step failed with NaN: the constraint C = (|d|^2 - L^2) / 2 squares the length.
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(length, 0, 0), 1);
+        world.AddParticle(new Vector3d(0, 0, 0), 1);
+        var rods = new RodNetwork(world);
+        foreach (var add in new Action[]
+        {
+            () => rods.AddRod(0, 1, length), () => rods.AddCable(0, 1, length),
+            () => rods.AddAnchoredRod(0, Vector3d.Zero, length), () => rods.AddAnchoredCable(0, Vector3d.Zero, length),
+        })
+        {
+            var e = Assert.Throws<ArgumentOutOfRangeException>("length", add);
+            Assert.Contains("square", e.Message, StringComparison.Ordinal);
+            Assert.Contains(length.ToString("R", CultureInfo.InvariantCulture), e.Message, StringComparison.Ordinal);
+        }
+
+        Assert.Equal(0, rods.Count);
+    }
+
+    [Theory]
+    [InlineData("rk4")]
+    [InlineData("semi-implicit-euler")]
+    [InlineData("xpbd")]
+    public void A_rod_of_1e150_m_steps(string integrator)
+    {
+        // The longest rods accepted square to a finite number, and step: a particle on a rod of 1e150 m swinging at 1 m/s.
+        const double length = 1e150;
+        var world = new ParticleWorld();
+        world.AddParticle(new Vector3d(length, 0, 0), new Vector3d(0, 1, 0), 1);
+        var rods = new RodNetwork(world);
+        rods.AddAnchoredRod(0, Vector3d.Zero, length);
+        world.AddConstraints(rods);
+        var method = IntegratorCatalog.Create(integrator);
+        for (var s = 0; s < 10; s++)
+        {
+            world.Step(method, 0.01);
+        }
+
+        Assert.Equal(length, world.GetPosition(0).X, length * 1e-15);
+        Assert.Equal(0.1, world.GetPosition(0).Y, 12);
+    }
+
     [Fact]
     public void Directions_whose_length_overflows_or_underflows_are_normalised_not_refused()
     {
@@ -109,6 +158,77 @@ public class NewApiBadInputTests
         Assert.Equal(state, world.State.ToArray());
         world.Step(new SemiImplicitEuler(), 0.1);
         Assert.Equal(state.Take(6), world.State.ToArray().Take(6)); // particle 0 was not set moving
+    }
+
+    [Theory]
+    [InlineData(1e-308)]
+    [InlineData(double.Epsilon)]
+    public void A_body_move_whose_velocity_overflows_changes_nothing_and_names_the_duration(double duration)
+    {
+        // Issue 27, item 2: the pose was set and particle 0 given its velocity, 1e-300 / 1e-308 = 1e8 m/s, before
+        // particle 1's, 2 / 1e-308, overflowed; the error said "target must have finite components; got (Infinity,
+        // NaN, NaN)". With double.Epsilon the pose moved and the call threw too.
+        var world = new ParticleWorld();
+        world.AddParticle(Vector3d.Zero, 1); // at the body's origin
+        world.AddParticle(new Vector3d(1, 0, 0), 1);
+        var body = new KinematicBody(world, Vector3d.Zero, Rotation3d.Identity);
+        body.Attach(0);
+        body.Attach(1);
+        var state = world.State.ToArray();
+        var halfTurn = Rotation3d.FromAxisAngle(new Vector3d(0, 0, 1), Math.PI);
+        var e = Assert.Throws<ArgumentOutOfRangeException>(
+            "duration", () => body.MoveTo(new Vector3d(1e-300, 0, 0), halfTurn, duration));
+        Assert.Contains("velocity", e.Message, StringComparison.Ordinal);
+        Assert.Contains(duration.ToString("R", CultureInfo.InvariantCulture), e.Message, StringComparison.Ordinal);
+        Assert.DoesNotContain("NaN", e.Message, StringComparison.Ordinal);
+        Assert.Equal(Vector3d.Zero, body.Position);
+        Assert.Equal(Rotation3d.Identity, body.Orientation);
+        Assert.Equal(state, world.State.ToArray());
+
+        // The same pose in any duration needs no velocity at all: accepted, at rest.
+        body.MoveTo(Vector3d.Zero, Rotation3d.Identity, duration);
+        Assert.Equal(state, world.State.ToArray());
+    }
+
+    [Theory]
+    [InlineData(double.Epsilon)]
+    [InlineData(1e-308)]
+    [InlineData(1e-300)]
+    public void A_kinematic_move_to_where_the_particle_is_stops_it_for_any_duration(double duration)
+    {
+        // Issue 27, item 3: the velocity was computed as (target - x) * (1 / duration), and 1 / 5e-324 = infinity made
+        // 0 * infinity = NaN: refused with "target must have finite components; got (NaN, NaN, NaN)".
+        var world = TwoParticles();
+        world.Pin(0, new Vector3d(1, 2, 3));
+        world.MoveKinematic(0, world.GetPosition(0), duration);
+        Assert.Equal(Vector3d.Zero, world.GetVelocity(0));
+
+        // A move that really needs more than the finite numbers names the duration and the velocity, and changes nothing.
+        world.Pin(0, new Vector3d(1, 2, 3));
+        var e = Assert.Throws<ArgumentOutOfRangeException>(
+            "duration", () => world.MoveKinematic(0, world.GetPosition(0) + new Vector3d(0, 1e300, 0), duration));
+        Assert.Contains("velocity", e.Message, StringComparison.Ordinal);
+        Assert.DoesNotContain("NaN", e.Message, StringComparison.Ordinal);
+        Assert.Equal(new Vector3d(1, 2, 3), world.GetVelocity(0));
+
+        // A target so far that target - x itself overflows names the target.
+        world.SetPosition(0, new Vector3d(-1e308, 0, 0));
+        var far = Assert.Throws<ArgumentOutOfRangeException>("target", () => world.MoveKinematic(0, new Vector3d(1e308, 0, 0), 1));
+        Assert.Contains("overflows", far.Message, StringComparison.Ordinal);
+        Assert.Equal(new Vector3d(1, 2, 3), world.GetVelocity(0));
+    }
+
+    [Fact]
+    public void A_kinematic_velocity_keeps_its_bits_for_ordinary_durations()
+    {
+        // (target - x) times 1 / duration, as before the fix for durations whose inverse overflows: runs that drive
+        // anchors (the Unity sample, the runtime comparison's body) keep their results.
+        var world = TwoParticles();
+        world.Pin(0);
+        var target = new Vector3d(0.3, 1.7, -0.2);
+        const double duration = 1.0 / 60;
+        world.MoveKinematic(0, target, duration);
+        Assert.Equal((target - new Vector3d(0, 1, 0)) * (1.0 / duration), world.GetVelocity(0));
     }
 
     [Fact]

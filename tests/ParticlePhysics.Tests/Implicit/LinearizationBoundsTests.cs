@@ -1,6 +1,7 @@
 using System;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Integrators;
+using ParticlePhysics.Integrators.Multigrid;
 
 namespace ParticlePhysics.Tests.Implicit;
 

@@ -2,6 +2,8 @@ using System;
 using System.Linq;
 using ParticlePhysics.Cloth;
 using ParticlePhysics.Integrators;
+using ParticlePhysics.Integrators.Multigrid;
+using ParticlePhysics.Numerics;
 using ParticlePhysics.Parallel;
 using ParticlePhysics.Scenarios;
 using ParticlePhysics.Tests.Support;

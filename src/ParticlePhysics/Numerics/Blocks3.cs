@@ -1,9 +1,9 @@
 using System;
 using System.Runtime.CompilerServices;
 
-namespace ParticlePhysics.Integrators;
+namespace ParticlePhysics.Numerics;
 
-/// <summary>Row-major 3 x 3 block arithmetic for the implicit solver's preconditioners.</summary>
+/// <summary>Row-major 3 x 3 block arithmetic: the diagonal blocks of the implicit solver and its preconditioners.</summary>
 internal static unsafe class Blocks3
 {
     /// <summary>Writes the inverse of the block at a[o] into inverse[p] by cofactors; false if it is singular or not finite.</summary>

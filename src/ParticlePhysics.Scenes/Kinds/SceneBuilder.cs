@@ -1,0 +1,163 @@
+using System.Collections.Generic;
+using ParticlePhysics.Constraints;
+using ParticlePhysics.Contacts;
+using ParticlePhysics.Forces;
+
+namespace ParticlePhysics.Scenes.Kinds;
+
+/// <summary>
+/// Builds one world from a scene's objects: the particles in numbering order, then one generator or constraint set per
+/// family shared by every object (all springs with a rest length in one <see cref="SpringNetwork"/>, all zero-length
+/// springs in one <see cref="ZeroLengthSprings"/>, all rods and cables in one <see cref="RodNetwork"/>, all loads in one
+/// <see cref="ConstantLoads"/>), in the order the objects list them. <see cref="Finish"/> adds them to the world in a
+/// fixed order, the order the course's scenarios use, so that a scene written like a scenario gives its bits:
+/// forces springs, zero-length springs, loads, drag, gravity; constraint sets the springs' projections (for xpbd),
+/// the rods, the contacts.
+/// </summary>
+internal sealed class SceneBuilder
+{
+    private readonly List<Obstacle> _obstacles = new();
+    private SpringNetwork? _springs;
+    private ZeroLengthSprings? _linear;
+    private RodNetwork? _rods;
+    private ConstantLoads? _loads;
+
+    public SceneBuilder(ParticleWorld world, string file)
+    {
+        World = world;
+        File = file;
+    }
+
+    public ParticleWorld World { get; }
+
+    /// <summary>The scene file, for errors found while building (a length left out that is not finite).</summary>
+    public string File { get; }
+
+    /// <summary>The springs with a rest length (and the dampers of zero-length springs), made on first use.</summary>
+    public SpringNetwork Springs => _springs ??= new SpringNetwork(World);
+
+    /// <summary>The zero-rest-length springs, F = -k (x_i - x_j), made on first use.</summary>
+    public ZeroLengthSprings LinearSprings => _linear ??= new ZeroLengthSprings(World);
+
+    /// <summary>The rods and cables, made on first use.</summary>
+    public RodNetwork Rods => _rods ??= new RodNetwork(World);
+
+    /// <summary>The constant loads, made on first use.</summary>
+    public ConstantLoads Loads => _loads ??= new ConstantLoads(World);
+
+    /// <summary>How many of each kind of element the objects added ("springs", "rods", ...), for a scene's description.</summary>
+    public Dictionary<string, int> Counts { get; } = new();
+
+    /// <summary>Counts <paramref name="count"/> elements of <paramref name="kind"/>.</summary>
+    public void Count(string kind, int count) => Counts[kind] = (Counts.TryGetValue(kind, out var n) ? n : 0) + count;
+
+    /// <summary>Adds a collider.</summary>
+    public void AddObstacle(Obstacle obstacle) => _obstacles.Add(obstacle);
+
+    /// <summary>Adds the shared generators and sets to the world, then drag, gravity and contacts as the settings say.</summary>
+    public ParticleWorld Finish(SceneSettings settings)
+    {
+        var world = World;
+        if (_springs is not null)
+        {
+            world.AddForce(_springs);
+        }
+
+        if (_linear is not null)
+        {
+            world.AddForce(_linear);
+        }
+
+        if (_loads is not null)
+        {
+            world.AddForce(_loads);
+        }
+
+        if (settings.Drag > 0)
+        {
+            world.AddForce(new LinearDrag(settings.Drag));
+        }
+
+        if (settings.Gravity != Vector3d.Zero)
+        {
+            world.AddForce(new Gravity(settings.Gravity));
+        }
+
+        if (_springs is not null)
+        {
+            world.AddConstraints(new SpringProjection(_springs));
+        }
+
+        if (_linear is not null)
+        {
+            world.AddConstraints(new SpringProjection(_linear));
+        }
+
+        if (_rods is not null)
+        {
+            world.AddConstraints(_rods);
+        }
+
+        if (_obstacles.Count > 0 || settings.ParticleCollisions)
+        {
+            var contacts = new ContactSet();
+            if (settings.ParticleCollisions)
+            {
+                contacts.ParticleCollisions = true;
+                contacts.ParticleRestitution = settings.ParticleRestitution;
+                contacts.ParticleFriction = settings.ParticleFriction;
+                contacts.PairFilter = JoinedPairs();
+            }
+
+            foreach (var obstacle in _obstacles)
+            {
+                contacts.Add(obstacle);
+            }
+
+            world.AddConstraints(contacts);
+        }
+
+        return world;
+    }
+
+    // The contract: pairs joined by a spring, rod or mesh edge do not collide.
+    private ExcludedPairs? JoinedPairs()
+    {
+        var pairs = new ExcludedPairs();
+        var any = false;
+        if (_springs is not null)
+        {
+            for (var s = 0; s < _springs.Count; s++)
+            {
+                var (a, b) = _springs.GetEnds(s);
+                pairs.Add(a, b);
+                any = true;
+            }
+        }
+
+        if (_linear is not null)
+        {
+            for (var s = 0; s < _linear.Count; s++)
+            {
+                var (a, b) = _linear.GetEnds(s);
+                pairs.Add(a, b);
+                any = true;
+            }
+        }
+
+        if (_rods is not null)
+        {
+            for (var r = 0; r < _rods.Count; r++)
+            {
+                var (a, b) = _rods.GetEnds(r);
+                if (b >= 0)
+                {
+                    pairs.Add(a, b);
+                    any = true;
+                }
+            }
+        }
+
+        return any ? pairs : null;
+    }
+}

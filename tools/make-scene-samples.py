@@ -1,0 +1,83 @@
+#!/usr/bin/env python3
+"""Writes the larger hand-made sample scenes of samples/scenes/ (the rope bridge, the ball pit), whose positions
+are too many to type. The course's scenarios are written by tests/ParticlePhysics.Tests/Scenes/CourseSceneFiles.cs
+instead, from the scenarios' own worlds. Run from the repository root: python3 tools/make-scene-samples.py"""
+import json
+
+
+def dump(path, comment, scene):
+    def fmt(value, indent):
+        # One line per list of numbers or of short lists, objects spread over lines.
+        if isinstance(value, dict):
+            inner = ",\n".join(" " * (indent + 2) + json.dumps(k) + ": " + fmt(v, indent + 2) for k, v in value.items())
+            return "{\n" + inner + "\n" + " " * indent + "}"
+        if isinstance(value, list) and value and isinstance(value[0], dict):
+            return "[\n" + ",\n".join(" " * (indent + 2) + fmt(v, indent + 2) for v in value) + "\n" + " " * indent + "]"
+        return json.dumps(value)
+    with open(path, "w") as f:
+        for line in comment:
+            f.write("// " + line + "\n")
+        f.write(fmt(scene, 0) + "\n")
+
+
+def rope_bridge():
+    n, span, width, slack = 21, 4.0, 0.6, 1.05
+    step = span / (n - 1)
+    ropes = [[round(-span / 2 + i * step, 12), 0.0, z] for z in (0.0, width) for i in range(n)]
+    cables = [[i, i + 1] for i in range(n - 1)] + [[n + i, n + i + 1] for i in range(n - 1)]
+    planks = [[i, n + i] for i in range(1, n - 1)]
+    braces = [[i, n + i + 1] for i in range(n - 1)] + [[i + 1, n + i] for i in range(n - 1)]
+    return {
+        "integrator": {"name": "xpbd", "substeps": 20},
+        "dt": 1 / 60,
+        "duration": 6,
+        "drag": 0.5,
+        "objects": [
+            {"type": "particles", "positions": ropes, "mass": 2, "pinned": [0, n - 1, n, 2 * n - 1]},
+            {"type": "cables", "pairs": cables, "length": round(step * slack, 12)},
+            {"type": "rods", "pairs": planks},
+            {"type": "springs", "pairs": braces, "stiffness": 2000, "damping": 5},
+            {"type": "load", "particles": [n // 2, n + n // 2], "force": [0, -343, 0]},
+        ],
+    }
+
+
+def ball_pit():
+    # 6 x 6 x 8 balls on a lattice of spacing 0.11 m, nudged by a fixed pattern so that they do not stack.
+    r, spacing, side, layers = 0.05, 0.11, 6, 8
+    seed = 12345
+    positions = []
+    for layer in range(layers):
+        for row in range(side):
+            for col in range(side):
+                seed = (1103515245 * seed + 12345) % 2**31
+                jx = (seed / 2**31 - 0.5) * 0.01
+                seed = (1103515245 * seed + 12345) % 2**31
+                jz = (seed / 2**31 - 0.5) * 0.01
+                positions.append([round(-0.3 + spacing * (col + 0.5) + jx, 6), round(0.4 + spacing * layer, 6),
+                                  round(-0.3 + spacing * (row + 0.5) + jz, 6)])
+    wall = 0.05
+    return {
+        "integrator": {"name": "xpbd", "substeps": 10},
+        "dt": 1 / 60,
+        "duration": 4,
+        "particleCollisions": {"restitution": 0.3, "friction": 0.2},
+        "objects": [{"type": "particles", "positions": positions, "mass": 0.05, "radius": r}],
+        "colliders": [
+            {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "restitution": 0.3, "friction": 0.3},
+            {"type": "box", "center": [-0.4 - wall, 0.4, 0], "halfExtents": [wall, 0.4, 0.45]},
+            {"type": "box", "center": [0.4 + wall, 0.4, 0], "halfExtents": [wall, 0.4, 0.45]},
+            {"type": "box", "center": [0, 0.4, -0.4 - wall], "halfExtents": [0.4, 0.4, wall]},
+            {"type": "box", "center": [0, 0.4, 0.4 + wall], "halfExtents": [0.4, 0.4, wall]},
+            {"type": "sphere", "center": [0, 0, 0], "radius": 0.15, "friction": 0.3},
+        ],
+    }
+
+
+dump("samples/scenes/rope-bridge.json", [
+    "A rope bridge: two ropes of 21 particles (2 kg each) joined by cables 5 % longer than their spacing, pinned at",
+    "both ends 4 m apart; planks are rods across, diagonal springs brace it, and a 35 kg walker (343 N on each rope)",
+    "stands in the middle. Written by tools/make-scene-samples.py."], rope_bridge())
+dump("samples/scenes/ball-pit.json", [
+    "A ball pit: 288 balls of radius 5 cm fall into a box of four walls on the ground, around a half-buried sphere;",
+    "they collide with each other (restitution 0.3, friction 0.2). Written by tools/make-scene-samples.py."], ball_pit())
