@@ -26,7 +26,7 @@ namespace ParticlePhysics.Benchmarks;
 /// <item><c>xpbd [--sizes 32,64,128,256] [--rounds 7] [--cores [--spin-us N]]</c>: a short
 /// side-by-side timing of the C xpbd and the library in one process, alternating (or, with <c>--cores</c>, one core
 /// against two), after a bit-for-bit check (<see cref="XpbdComparison"/>).</item>
-/// <item><c>runner [--parallelism 2] [--rounds 5] [--ms 150] [--spin-us N] [--engine xpbd|implicit-euler [--n 64]]</c>: the cost
+/// <item><c>runner [--parallelism 2] [--rounds 5] [--ms 150] [--spin-us N] [--engine xpbd|implicit-euler [--n 64] [--tolerance 1e-3]]</c>: the cost
 /// of a hand-off alone (or in the engine), one core against the runner that never spins and the runner as shipped, alternating
 /// (<see cref="RunnerHandOffs"/>).</item>
 /// <item><c>quality [--n 64]</c>: each solver's cloth after 5 s against RK4 at a small dt: lowest point, stretch of

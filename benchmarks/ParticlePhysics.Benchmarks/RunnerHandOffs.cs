@@ -17,9 +17,10 @@ namespace ParticlePhysics.Benchmarks;
 /// shipped, in alternating rounds so that all see the same load.
 /// Printed per case: wall time per run (fastest round, median of rounds), the process's CPU time per run, and the
 /// median of the per-round ratios against one core.
-/// <c>--engine xpbd|implicit-euler [--n 64]</c>: the same three on the engine instead, one simulated second from rest
-/// per round (xpbd: 60 frames of 10 substeps; implicit Euler: 60 frames at tolerance 1e-3 from a cold solver), each
-/// runner's state checked bit-identical to one core's. <c>--spin-us N</c>: the adaptive runner with a spin limit of N
+/// <c>--engine xpbd|implicit-euler [--n 64] [--tolerance 1e-3]</c>: the same three on the engine instead, one simulated
+/// second from rest per round (xpbd: 60 frames of 10 substeps; implicit Euler: 60 frames at the tolerance, 1e-3 by
+/// default, from a cold solver, with its conjugate-gradient iterations per frame), each runner's state checked
+/// bit-identical to one core's. <c>--spin-us N</c>: the adaptive runner with a spin limit of N
 /// microseconds instead of the default.
 /// </summary>
 internal static class RunnerHandOffs
@@ -38,7 +39,9 @@ internal static class RunnerHandOffs
 
         if (Program.Option(args, "--engine") is { } engine)
         {
-            return RunEngine(engine, int.Parse(Program.Option(args, "--n") ?? "64", CultureInfo.InvariantCulture), parallelism, rounds);
+            var n = int.Parse(Program.Option(args, "--n") ?? "64", CultureInfo.InvariantCulture);
+            var tolerance = double.Parse(Program.Option(args, "--tolerance") ?? "1e-3", CultureInfo.InvariantCulture);
+            return RunEngine(engine, n, tolerance, parallelism, rounds);
         }
 
         var milliseconds = double.Parse(Program.Option(args, "--ms") ?? "150", CultureInfo.InvariantCulture);
@@ -107,10 +110,12 @@ internal static class RunnerHandOffs
         }
     }
 
-    private static int RunEngine(string engine, int n, int parallelism, int rounds)
+    private static int RunEngine(string engine, int n, double tolerance, int parallelism, int rounds)
     {
         Action<IParallelRunner?> simulateSecond;
         Func<double[]> state;
+        var label = engine;
+        var iterations = 0;
         if (engine == "xpbd")
         {
             var cloth = new XpbdCloth(n);
@@ -124,15 +129,17 @@ internal static class RunnerHandOffs
         else if (engine == "implicit-euler")
         {
             var cloth = new ClothFixture(n);
-            var implicitEuler = new Integrators.ImplicitEuler { Tolerance = 1e-3 };
+            var implicitEuler = new Integrators.ImplicitEuler { Tolerance = tolerance };
             simulateSecond = runner =>
             {
                 cloth.System.Runner = runner;
                 cloth.Reset();
                 implicitEuler.ReadState(new double[] { 0 }); // a cold solver, as the profile mode and the benchmark
+                iterations = 0;
                 for (var frame = 0; frame < 60; frame++)
                 {
                     cloth.System.Step(implicitEuler, 1.0 / 60);
+                    iterations += implicitEuler.LastIterations;
                 }
             };
             state = () => cloth.System.State.ToArray();
@@ -145,11 +152,16 @@ internal static class RunnerHandOffs
 
         using var contenders = new Contenders(parallelism);
         var runners = contenders.Rows;
-        Console.WriteLine(string.Create(
-            CultureInfo.InvariantCulture,
-            $"{engine}, {n} x {n} cloth, one simulated second from rest per round: one core and {parallelism} threads, {rounds} rounds alternating; load average {LoadAverage()}, {Environment.ProcessorCount} cores"));
         simulateSecond(null);
         var expected = state();
+        if (engine == "implicit-euler")
+        {
+            label = string.Create(CultureInfo.InvariantCulture, $"implicit-euler (tolerance {tolerance:0.##e+0}, {iterations / 60.0:F2} CG iterations per frame)");
+        }
+
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"{label}, {n} x {n} cloth, one simulated second from rest per round: one core and {parallelism} threads, {rounds} rounds alternating; load average {LoadAverage()}, {Environment.ProcessorCount} cores"));
         var same = true;
         foreach (var (_, runner) in runners)
         {
