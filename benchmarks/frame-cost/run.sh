@@ -49,7 +49,7 @@ grep '^hash ' "$work/clr.txt" >"$work/clr.hash"
 grep '^hash ' "$work/mono.txt" >"$work/mono.hash"
 diff "$work/clr.hash" "$work/mono.hash" >&2 || die "Mono (>) and .NET (<) computed different bits"
 
-echo "$started; $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ //'), $(nproc) vCPUs; load average $load_before before, $load_after after;"
+echo "$started; $(benchmarks/machine.sh); load average $load_before before, $load_after after;"
 echo "$(sed -n 's/^runtime //p' "$work/clr.txt") and $(sed -n 's/^runtime //p' "$work/mono.txt" | cut -d' ' -f1-2);" \
   "\`benchmarks/frame-cost/run.sh --rounds $rounds --n $n\`. The same bits on both runtimes and on one thread and two."
 echo
