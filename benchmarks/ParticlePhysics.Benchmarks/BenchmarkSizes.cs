@@ -20,9 +20,6 @@ internal static class BenchmarkSizes
     /// <summary>n for the RK4 scaling benchmark: 16 to 256 (quick: 16 and 32).</summary>
     public static IEnumerable<int> Scaling => Quick ? new[] { 16, 32 } : new[] { 16, 32, 64, 128, 256 };
 
-    /// <summary>n for the spring-loop experiments: 32 and 128 (quick: 16).</summary>
-    public static IEnumerable<int> Kernel => Quick ? new[] { 16 } : new[] { 32, 128 };
-
     /// <summary>n for the implicit Euler benchmarks (issues 3 and 13): 64 and 128 (quick: 16).</summary>
     public static IEnumerable<int> Implicit => Quick ? new[] { 16 } : new[] { 64, 128 };
 

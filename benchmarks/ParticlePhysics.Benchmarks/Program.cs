@@ -23,15 +23,15 @@ namespace ParticlePhysics.Benchmarks;
 /// RK4 cloth steps (or xpbd or implicit-Euler frames) in a loop, for <c>perf record</c> or callgrind
 /// (with <c>--runner</c>, <see cref="RunnerChoice"/>'s options choose the runner; <c>--per-frame</c> prints the
 /// implicit solve's iterations of each frame of the first simulated second).</item>
-/// <item><c>xpbd [--sizes 32,64,128,256] [--rounds 7] [--cores [--previous-runner | --spin-us N]]</c>: a short
+/// <item><c>xpbd [--sizes 32,64,128,256] [--rounds 7] [--cores [--spin-us N]]</c>: a short
 /// side-by-side timing of the C xpbd and the library in one process, alternating (or, with <c>--cores</c>, one core
 /// against two), after a bit-for-bit check (<see cref="XpbdComparison"/>); <c>--lean</c>: the lean C
 /// (<c>cloth_xpbd_lean.c</c>, no damping) against the library with damping 0 and with 0.05.</item>
 /// <item><c>mesh-cloth --c | --scaling | --implicit | --cores</c>: a mesh cloth with membrane and bending: its
 /// projections against their C reference, the cost per triangle from 1,000 to 100,000 triangles, implicit Euler
 /// against the spring cloth, two cores against one (<see cref="MeshClothComparison"/>).</item>
-/// <item><c>runner [--parallelism 2] [--rounds 5] [--ms 150] [--spin-us N] [--engine xpbd|implicit-euler [--n 64]]</c>: the cost
-/// of a hand-off alone (or in the engine), one core against the previous and the current runner, alternating
+/// <item><c>runner [--parallelism 2] [--rounds 5] [--ms 150] [--spin-us N] [--engine xpbd|implicit-euler [--n 64] [--tolerance 1e-3]]</c>: the cost
+/// of a hand-off alone (or in the engine), one core against the runner that never spins and the runner as shipped, alternating
 /// (<see cref="RunnerHandOffs"/>).</item>
 /// <item><c>quality [--n 64]</c>: each solver's cloth after 5 s against RK4 at a small dt: lowest point, stretch of
 /// the structural springs (<see cref="ClothQuality"/>; deterministic, no timing).</item>
@@ -40,8 +40,6 @@ namespace ParticlePhysics.Benchmarks;
 /// <item><c>contacts [--sizes 1000,10000,100000] [--resolves 5] [--state DIR]</c>: the contact stage on settled piles,
 /// outside BenchmarkDotNet: what each pile holds, a checksum of the result, the fastest resolve; for callgrind
 /// (<see cref="ContactCosts"/>).</item>
-/// <item><c>preconditioners [--n 32] [--frames 30] [--omega 0.6]</c>: conjugate-gradient iterations on one real
-/// implicit-Euler step of the cloth with candidate preconditioners (<see cref="PreconditionerLab"/>; slow, no timing).</item>
 /// <item><c>obj [--vertices 1000000] [--rounds 7]</c>: the OBJ reader's throughput in MB/s on a generated mesh
 /// (<see cref="ObjThroughput"/>).</item>
 /// <item><c>--quick</c> (before BenchmarkDotNet's arguments): small cloths, for CI.</item>
@@ -52,11 +50,6 @@ internal static class Program
 {
     private static int Main(string[] args)
     {
-        if (args.Length > 0 && args[0] == "preconditioners")
-        {
-            return PreconditionerLab.Run(args[1..]);
-        }
-
         if (args.Length > 0 && args[0] == "obj")
         {
             return ObjThroughput.Run(args[1..]);
@@ -119,7 +112,7 @@ internal static class Program
         if (quick)
         {
             // CI: a filter that silently matches nothing must not pass.
-            foreach (var type in new[] { typeof(ClothStepBenchmarks), typeof(IntegratorBenchmarks), typeof(ComparisonBenchmarks), typeof(SpringKernelBenchmarks), typeof(PackedStepBenchmarks), typeof(ContactBenchmarks), typeof(XpbdBenchmarks), typeof(XpbdParallelBenchmarks) })
+            foreach (var type in new[] { typeof(ClothStepBenchmarks), typeof(IntegratorBenchmarks), typeof(ComparisonBenchmarks), typeof(ImplicitEulerBenchmarks), typeof(ParallelBenchmarks), typeof(ContactBenchmarks), typeof(XpbdBenchmarks), typeof(XpbdParallelBenchmarks) })
             {
                 if (!summaries.Any(s => s.BenchmarksCases.Any(c => c.Descriptor.Type == type)))
                 {

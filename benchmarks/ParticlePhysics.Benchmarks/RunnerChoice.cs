@@ -6,19 +6,13 @@ namespace ParticlePhysics.Benchmarks;
 
 /// <summary>
 /// Which runner a mode uses: by default <see cref="WorkerThreadRunner"/> as the library ships it;
-/// <c>--spin-us N</c>: the same with a spin limit of N microseconds (0: it never spins, every hand-off sleeps);
-/// <c>--previous-runner</c>: <see cref="PreviousWorkerThreadRunner"/>, the runner before the adaptive hand-off.
+/// <c>--spin-us N</c>: the same with a spin limit of N microseconds (0: it never spins, every hand-off sleeps).
 /// </summary>
 internal static class RunnerChoice
 {
     /// <summary>The runner the arguments name, with <paramref name="parallelism"/> threads (the caller's included).</summary>
     public static IParallelRunner Create(string[] args, int parallelism)
     {
-        if (Array.IndexOf(args, "--previous-runner") >= 0)
-        {
-            return new PreviousWorkerThreadRunner(parallelism);
-        }
-
         return SpinMicroseconds(args) is { } microseconds
             ? new WorkerThreadRunner(parallelism, TimeSpan.FromTicks((long)Math.Round(microseconds * 10)))
             : new WorkerThreadRunner(parallelism);
@@ -27,11 +21,6 @@ internal static class RunnerChoice
     /// <summary>The name of the runner <see cref="Create"/> makes, for the output.</summary>
     public static string Describe(string[] args, int parallelism)
     {
-        if (Array.IndexOf(args, "--previous-runner") >= 0)
-        {
-            return $"PreviousWorkerThreadRunner({parallelism})";
-        }
-
         return SpinMicroseconds(args) is { } microseconds
             ? string.Create(CultureInfo.InvariantCulture, $"WorkerThreadRunner({parallelism}, spin limit {microseconds} us)")
             : $"WorkerThreadRunner({parallelism})";

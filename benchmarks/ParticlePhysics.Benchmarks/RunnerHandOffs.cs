@@ -13,13 +13,14 @@ namespace ParticlePhysics.Benchmarks;
 /// serial work, then a run of chunks of calibrated busy work, over and over, as the engine's passes do (xpbd: a
 /// colour of a few microseconds per core, back to back; implicit Euler: passes of tens of microseconds between
 /// serial pieces). The same loop on one core (the chunks in turn on the calling thread, no runner), with
-/// <see cref="PreviousWorkerThreadRunner"/>, with <see cref="WorkerThreadRunner"/> that never spins (spin limit 0)
-/// and with <see cref="WorkerThreadRunner"/> as shipped, in alternating rounds so that all see the same load.
+/// <see cref="WorkerThreadRunner"/> that never spins (spin limit 0) and with <see cref="WorkerThreadRunner"/> as
+/// shipped, in alternating rounds so that all see the same load.
 /// Printed per case: wall time per run (fastest round, median of rounds), the process's CPU time per run, and the
-/// medians of the per-round ratios against one core and against the previous runner.
-/// <c>--engine xpbd|implicit-euler [--n 64]</c>: the same four on the engine instead, one simulated second from rest
-/// per round (xpbd: 60 frames of 10 substeps; implicit Euler: 60 frames at tolerance 1e-3 from a cold solver), each
-/// runner's state checked bit-identical to one core's. <c>--spin-us N</c>: the adaptive runner with a spin limit of N
+/// median of the per-round ratios against one core.
+/// <c>--engine xpbd|implicit-euler [--n 64] [--tolerance 1e-3]</c>: the same three on the engine instead, one simulated
+/// second from rest per round (xpbd: 60 frames of 10 substeps; implicit Euler: 60 frames at the tolerance, 1e-3 by
+/// default, from a cold solver, with its conjugate-gradient iterations per frame), each runner's state checked
+/// bit-identical to one core's. <c>--spin-us N</c>: the adaptive runner with a spin limit of N
 /// microseconds instead of the default.
 /// </summary>
 internal static class RunnerHandOffs
@@ -38,7 +39,9 @@ internal static class RunnerHandOffs
 
         if (Program.Option(args, "--engine") is { } engine)
         {
-            return RunEngine(engine, int.Parse(Program.Option(args, "--n") ?? "64", CultureInfo.InvariantCulture), parallelism, rounds);
+            var n = int.Parse(Program.Option(args, "--n") ?? "64", CultureInfo.InvariantCulture);
+            var tolerance = double.Parse(Program.Option(args, "--tolerance") ?? "1e-3", CultureInfo.InvariantCulture);
+            return RunEngine(engine, n, tolerance, parallelism, rounds);
         }
 
         var milliseconds = double.Parse(Program.Option(args, "--ms") ?? "150", CultureInfo.InvariantCulture);
@@ -48,7 +51,7 @@ internal static class RunnerHandOffs
             $"runner hand-offs: {parallelism} threads, {rounds} rounds of about {milliseconds} ms per runner and case, alternating; load average {LoadAverage()}, {Environment.ProcessorCount} cores"));
         Console.WriteLine(string.Create(CultureInfo.InvariantCulture, $"busy work calibrated at {perMicrosecond:F1} iterations per us (fastest of 5)"));
         Console.WriteLine("per run: serial work on the calling thread, then the chunks; us per run: fastest round (median); CPU: the process's CPU time per run (median);");
-        Console.WriteLine("x one core, x previous: medians of the per-round ratios of wall time (above 1: faster)");
+        Console.WriteLine("x one core: median of the per-round ratios of wall time (above 1: faster)");
 
         // A chunk time of -1: the rendezvous, one chunk per thread, each waiting until all have started, so that every
         // thread must take part: the pure cost of handing a run to the workers and back (no one-core figure).
@@ -103,14 +106,16 @@ internal static class RunnerHandOffs
         {
             Console.WriteLine(string.Create(
                 CultureInfo.InvariantCulture,
-                $"  {runners[k].Name,-22} {wall[k].Min(),8:F2} ({Rounds.Median(wall[k]),8:F2}) us per run, CPU {Rounds.Median(cpu[k]),8:F2} us; x one core {Rounds.MedianRatio(wall[0], wall[k]),6:F3}, x previous {Rounds.MedianRatio(wall[1], wall[k]),6:F3}"));
+                $"  {runners[k].Name,-22} {wall[k].Min(),8:F2} ({Rounds.Median(wall[k]),8:F2}) us per run, CPU {Rounds.Median(cpu[k]),8:F2} us; x one core {Rounds.MedianRatio(wall[0], wall[k]),6:F3}"));
         }
     }
 
-    private static int RunEngine(string engine, int n, int parallelism, int rounds)
+    private static int RunEngine(string engine, int n, double tolerance, int parallelism, int rounds)
     {
         Action<IParallelRunner?> simulateSecond;
         Func<double[]> state;
+        var label = engine;
+        var iterations = 0;
         if (engine == "xpbd")
         {
             var cloth = new XpbdCloth(n);
@@ -124,15 +129,17 @@ internal static class RunnerHandOffs
         else if (engine == "implicit-euler")
         {
             var cloth = new ClothFixture(n);
-            var implicitEuler = new Integrators.ImplicitEuler { Tolerance = 1e-3 };
+            var implicitEuler = new Integrators.ImplicitEuler { Tolerance = tolerance };
             simulateSecond = runner =>
             {
                 cloth.System.Runner = runner;
                 cloth.Reset();
                 implicitEuler.ReadState(new double[] { 0 }); // a cold solver, as the profile mode and the benchmark
+                iterations = 0;
                 for (var frame = 0; frame < 60; frame++)
                 {
                     cloth.System.Step(implicitEuler, 1.0 / 60);
+                    iterations += implicitEuler.LastIterations;
                 }
             };
             state = () => cloth.System.State.ToArray();
@@ -145,11 +152,16 @@ internal static class RunnerHandOffs
 
         using var contenders = new Contenders(parallelism);
         var runners = contenders.Rows;
-        Console.WriteLine(string.Create(
-            CultureInfo.InvariantCulture,
-            $"{engine}, {n} x {n} cloth, one simulated second from rest per round: one core and {parallelism} threads, {rounds} rounds alternating; load average {LoadAverage()}, {Environment.ProcessorCount} cores"));
         simulateSecond(null);
         var expected = state();
+        if (engine == "implicit-euler")
+        {
+            label = string.Create(CultureInfo.InvariantCulture, $"implicit-euler (tolerance {tolerance:0.##e+0}, {iterations / 60.0:F2} CG iterations per frame)");
+        }
+
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"{label}, {n} x {n} cloth, one simulated second from rest per round: one core and {parallelism} threads, {rounds} rounds alternating; load average {LoadAverage()}, {Environment.ProcessorCount} cores"));
         var same = true;
         foreach (var (_, runner) in runners)
         {
@@ -176,12 +188,12 @@ internal static class RunnerHandOffs
         spins = adaptive.SpinningWaits - spins;
 
         Console.WriteLine(same ? "same bits with every runner as on one core" : "error: a runner gave DIFFERENT bits from one core");
-        Console.WriteLine("ms per simulated second: fastest round (median); CPU: the process's CPU time (median); x one core, x previous: medians of the per-round ratios of wall time");
+        Console.WriteLine("ms per simulated second: fastest round (median); CPU: the process's CPU time (median); x one core: median of the per-round ratios of wall time");
         for (var k = 0; k < runners.Length; k++)
         {
             Console.WriteLine(string.Create(
                 CultureInfo.InvariantCulture,
-                $"  {runners[k].Name,-22} {wall[k].Min(),9:F2} ({Rounds.Median(wall[k]),9:F2}) ms, CPU {Rounds.Median(cpu[k]),9:F2} ms; x one core {Rounds.MedianRatio(wall[0], wall[k]),6:F3}, x previous {Rounds.MedianRatio(wall[1], wall[k]),6:F3}"));
+                $"  {runners[k].Name,-22} {wall[k].Min(),9:F2} ({Rounds.Median(wall[k]),9:F2}) ms, CPU {Rounds.Median(cpu[k]),9:F2} ms; x one core {Rounds.MedianRatio(wall[0], wall[k]),6:F3}"));
         }
 
         Console.WriteLine(string.Create(
@@ -191,23 +203,20 @@ internal static class RunnerHandOffs
     }
 
     /// <summary>
-    /// The runners every case compares, in the order of its rows: one core (no runner), the previous runner, the shipped
-    /// runner that never spins, and the shipped runner at the spin limit of <c>--spin-us</c> (its default otherwise).
+    /// The runners every case compares, in the order of its rows: one core (no runner), the shipped runner that never
+    /// spins, and the shipped runner at the spin limit of <c>--spin-us</c> (its default otherwise).
     /// </summary>
     private sealed class Contenders : IDisposable
     {
-        private readonly PreviousWorkerThreadRunner _previous;
         private readonly WorkerThreadRunner _blocking;
 
         public Contenders(int parallelism)
         {
-            _previous = new PreviousWorkerThreadRunner(parallelism);
             _blocking = new WorkerThreadRunner(parallelism, TimeSpan.Zero);
             Adaptive = new WorkerThreadRunner(parallelism, _spinLimit);
             Rows = new (string Name, IParallelRunner? Runner)[]
             {
                 ("one core", null),
-                ("previous runner", _previous),
                 ("spin limit 0", _blocking),
                 (string.Create(CultureInfo.InvariantCulture, $"adaptive, {Adaptive.SpinLimit.TotalMilliseconds * 1000} us"), Adaptive),
             };
@@ -219,7 +228,6 @@ internal static class RunnerHandOffs
 
         public void Dispose()
         {
-            _previous.Dispose();
             _blocking.Dispose();
             Adaptive.Dispose();
         }

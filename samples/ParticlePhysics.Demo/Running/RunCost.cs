@@ -24,9 +24,9 @@ internal sealed record RunCost(long Steps, int Particles, long Springs, double S
     // Nanoseconds per step, per particle and per spring for each integrator: `dotnet run -c Release --project
     // benchmarks/ParticlePhysics.Benchmarks -- costs` (the fastest of 200 batches on one free particle, 4,096 free
     // particles and the 64 x 64 cloth at dt = 1 ms), 2026-12-01 on the 2-core development machine under load (about
-    // 1.7 times the quiet machine's times in docs/benchmarks.md: 287 us against 166 us for an explicit cloth step), so
-    // the estimates lean long. Implicit Euler's and rk45's costs depend on dt and the stiffness (iterations, internal
-    // steps): theirs are those of the cloth at its default 1 ms.
+    // 1.7 times the quiet machine's times in c54a830's docs/benchmarks.md: 287 us against 166 us for an explicit cloth
+    // step), so the estimates lean long. Implicit Euler's and rk45's costs depend on dt and the stiffness (iterations,
+    // internal steps): theirs are those of the cloth at its default 1 ms.
     private static readonly Dictionary<string, (double Step, double Particle, double Spring)> _costs = new()
     {
         ["explicit-euler"] = (50, 24.00, 7.90),

@@ -231,9 +231,9 @@ public sealed partial class ImplicitEuler : IStatefulIntegrator
         // the Galerkin conditions u_j . (b - sum c_a q_a) = 0 (one pass for the sums, a 4 x 4 solve; fewer steps when
         // the system is singular, the extrapolation when none is left): it removes the error in the span of those
         // steps, where the smooth part of the motion lies. Not under block Jacobi: the error it removes there is in the
-        // stiff components, which block Jacobi damps anyway (docs/benchmarks.md, "The warm start" and "The warm start
-        // from the last four steps"). Pinned components are always 0. The committed warm start is only read here: a
-        // step that fails leaves it as it was (CommitStep moves dv and its product in).
+        // stiff components, which block Jacobi damps anyway (c54a830's docs/benchmarks.md, "The warm start" and "The
+        // warm start from the last four steps"). Pinned components are always 0. The committed warm start is only read
+        // here: a step that fails leaves it as it was (CommitStep moves dv and its product in).
         var known = WarmStart && _history.Length == n ? _history.Known : 0;
         var knownProducts = known > 0 ? Math.Min(_history.KnownProducts, known) : 0;
         // The start from the products is the multigrid's, so only its steps keep their products; taken before the

@@ -21,8 +21,8 @@ namespace ParticlePhysics.Integrators;
 internal sealed class WarmStartHistory
 {
     /// <summary>
-    /// The steps remembered: four, where the iterations the start saves stop falling (docs/benchmarks.md, "The warm
-    /// start from the last four steps").
+    /// The steps remembered: four, where the iterations the start saves stop falling (c54a830's docs/benchmarks.md,
+    /// "The warm start from the last four steps").
     /// </summary>
     public const int Depth = 4;
 

@@ -22,8 +22,8 @@ namespace ParticlePhysics.Parallel;
 /// share is the chunks from ceil(t c / p) to ceil((t + 1) c / p). The engine's passes split the same particles into
 /// the same chunks every time, so a thread that runs its own share finds its chunks' data where its last pass left
 /// it, in its core's cache, where one counter shared by every thread would hand a chunk to whichever thread came first
-/// (docs/benchmarks.md, "Shares of a run"). Results do not depend on it: a share decides who runs a chunk first, never
-/// what it computes.</para>
+/// (c54a830's docs/benchmarks.md, "Shares of a run"). Results do not depend on it: a share decides who runs a chunk
+/// first, never what it computes.</para>
 /// <para><b>The protocol.</b> The shared state of a run is its work, its chunk count, the end of each share,
 /// <c>_finished</c> (chunks done), <c>_failure</c> and, per share, one 64-bit claim word: the run's number in the high
 /// 32 bits, the share's next unclaimed chunk in the low 32 (each word alone on its cache line).</para>

@@ -95,8 +95,9 @@ public class MultigridTests
         // one pass, SpringJacobianProduct; it was two, per-spring slots then their gather), w = A z with
         // z . w, and the fused passes: the update with the preconditioner's first pass, and for the multigrid the first
         // coarse level's residual and the post-smoothing with the prolongation, then the second level's residual and
-        // post-smoothing (256 aggregates: worth sharing at the runner's 200 us spin limit) (docs/benchmarks.md). Counted as the
-        // hand-offs added by the iterations that a tighter tolerance adds to the same steps.
+        // post-smoothing (256 aggregates: worth sharing at the runner's 200 us spin limit) (c54a830's
+        // docs/benchmarks.md). Counted as the hand-offs added by the iterations that a tighter tolerance adds to the
+        // same steps.
         var (loose, looseIterations) = HandOffs(preconditioner, 1e-3);
         var (tight, tightIterations) = HandOffs(preconditioner, 1e-6);
         var perIteration = (double)(tight - loose) / (tightIterations - looseIterations);

@@ -22,8 +22,8 @@ namespace ParticlePhysics.Integrators.Multigrid;
 /// x^T A x &lt;= 2 x^T D x - x^T M x, so lambda_max(D^-1 A) &lt; 2 and the sweep converges, which keeps B_c, and
 /// so the preconditioner, symmetric positive definite. The coarsest level (at most 16 aggregates) is solved by a
 /// dense Cholesky factorisation. Additive rather than multiplicative at the top: a multiplicative cycle needs two
-/// more products with the fine operator per iteration, more than its fewer iterations save (docs/benchmarks.md,
-/// "Implicit Euler's preconditioner"). Pinned particles are filtered: they take no part in the
+/// more products with the fine operator per iteration, more than its fewer iterations save (c54a830's
+/// docs/benchmarks.md, "Implicit Euler's preconditioner"). Pinned particles are filtered: they take no part in the
 /// restriction, the prolongation or the Galerkin sums, which therefore follow pinning without a rebuild.
 /// Every pass runs in fixed chunks whose partial sums are combined in chunk order, so the result does not depend
 /// on how many threads run them.

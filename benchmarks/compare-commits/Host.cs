@@ -5,25 +5,30 @@ using System.Linq;
 using System.Reflection;
 using System.Runtime.Loader;
 
-// The host of in-process.sh: loads the shim of each side (each with its own library) into its own load context, so
-// that both run in this one process, then alternates them round by round (which goes first alternates too), so that
-// both see the same machine from one second to the next. Prints each side's fastest and median round and the median
-// and quartiles of the per-round ratios B / A.
-//   Host dirA dirB rounds tolA tolB n
+// The host of run.sh: loads the shim of each side (each with its own library) into its own load context, so that
+// both run in this one process, then alternates them round by round (which goes first alternates too), so that both
+// see the same machine from one second to the next. Prints each side's fastest and median round, the median and
+// quartiles of the per-round ratios B / A, and whether both sides ended in the same bits.
+//   Host dirA dirB rounds tolA tolB n integrator steps
 var rounds = int.Parse(args[2]);
 var tolerances = new[] { double.Parse(args[3], System.Globalization.CultureInfo.InvariantCulture), double.Parse(args[4], System.Globalization.CultureInfo.InvariantCulture) };
 var n = int.Parse(args[5]);
+var integrator = args[6];
+var steps = int.Parse(args[7]);
 var run = new Func<double>[2];
 var iterations = new Func<long>[2];
+var stateHash = new Func<ulong>[2];
 for (var side = 0; side < 2; side++)
 {
     var dir = Path.GetFullPath(args[side]);
     var shim = new SideContext(dir).LoadFromAssemblyPath(Path.Combine(dir, "Shim.dll")).GetType("Shim")!;
-    var instance = Activator.CreateInstance(shim, n, tolerances[side])!;
+    var instance = Activator.CreateInstance(shim, n, tolerances[side], integrator, steps)!;
     var round = shim.GetMethod("Round")!;
     var count = shim.GetProperty("Iterations")!;
     run[side] = () => (double)round.Invoke(instance, null)!;
     iterations[side] = () => (long)count.GetValue(instance)!;
+    var hash = shim.GetProperty("StateHash")!;
+    stateHash[side] = () => (ulong)hash.GetValue(instance)!;
 }
 
 for (var warm = 0; warm < 3; warm++)
@@ -43,11 +48,14 @@ for (var r = 0; r < rounds; r++)
 var ratios = times[0].Zip(times[1], (a, b) => b / a).OrderBy(x => x).ToList();
 double Median(List<double> values) => values.OrderBy(x => x).ElementAt(values.Count / 2);
 string Side(int s, string name) => FormattableString.Invariant(
-    $"{name} (tolerance {tolerances[s]:R}, {iterations[s]() / 60.0:F2} it/frame): fastest {times[s].Min():F1} ms, median {Median(times[s]):F1} ms");
-Console.WriteLine(Side(0, "A " + args[0]));
-Console.WriteLine(Side(1, "B " + args[1]));
+    $"{name}{(integrator == "implicit-euler" ? $" (tolerance {tolerances[s]:R}, {iterations[s]() / 60.0:F2} CG it/frame)" : "")}: fastest {times[s].Min():F1} ms, median {Median(times[s]):F1} ms per simulated second");
+Console.WriteLine(Side(0, "A"));
+Console.WriteLine(Side(1, "B"));
 Console.WriteLine(FormattableString.Invariant(
     $"B / A over {rounds} alternating rounds: median {ratios[ratios.Count / 2]:F3}, quartiles {ratios[ratios.Count / 4]:F3} to {ratios[3 * ratios.Count / 4]:F3}; fastest rounds {times[1].Min() / times[0].Min():F3}"));
+Console.WriteLine(stateHash[0]() == stateHash[1]()
+    ? "same bits: A and B end the second in the same state"
+    : "other bits: A and B end the second in different states");
 
 /// <summary>Resolves a side's library from its own folder, so that the two sides' libraries do not meet.</summary>
 internal sealed class SideContext : AssemblyLoadContext
