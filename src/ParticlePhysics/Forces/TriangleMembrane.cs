@@ -1,5 +1,6 @@
 using System;
 using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 using ParticlePhysics.Internal;
 using ParticlePhysics.Numerics;
 
@@ -392,7 +393,7 @@ public sealed class TriangleMembrane : IForceGenerator, IPotentialEnergy, IBound
             // CheckSizes: w and result hold every particle; every corner is one (checked in Add), and the linearisation
             // and parameters hold _count triangles. The product runs once per conjugate-gradient iteration: no bounds
             // checks in it.
-            fixed (double* wp = w, rp = result, lp = _linear, parameters = _parameters)
+            fixed (double* wp = &MemoryMarshal.GetReference(w), rp = result, lp = _linear, parameters = _parameters)
             fixed (int* corners = _corners)
             {
                 for (var t = 0; t < _count; t++)
@@ -530,7 +531,7 @@ public sealed class TriangleMembrane : IForceGenerator, IPotentialEnergy, IBound
     {
         var o = Stride * t;
         double p = _parameters[o], q = _parameters[o + 1], r = _parameters[o + 2], s = _parameters[o + 3];
-        ReadOnlySpan<double> l = _linear.AsSpan(LinearStride * t, LinearStride);
+        var l = _linear.AsSpan(LinearStride * t, LinearStride);
         var (bix, biy) = Beta(i, p, q, r, s);
         var (bjx, bjy) = Beta(j, p, q, r, s);
         double mu = 0.5 * l[9], lambda = l[10];
