@@ -79,17 +79,17 @@ public sealed class MembraneProjection : IForceProjection
         var x = context.Positions;
         var x0 = context.StartPositions.ForReading();
         var w = context.InverseMasses.ForReading();
-        if (context.Runner is not { MaxParallelism: > 1 } runner)
-        {
-            ProjectRange(0, _triangles.Length, x, x0, w);
-            return;
-        }
-
         unsafe
         {
             // The spans hold the world's particles, and Refresh checked every corner against their count.
             fixed (double* px = x, px0 = x0, pw = w)
             {
+                if (context.Runner is not { MaxParallelism: > 1 } runner)
+                {
+                    ProjectRange(0, _triangles.Length, px, px0, pw);
+                    return;
+                }
+
                 for (var c = 0; c + 1 < _colourStarts.Length; c++)
                 {
                     // The triangles of a colour share no particle: split over the runner, the same bits in any order.
@@ -97,36 +97,43 @@ public sealed class MembraneProjection : IForceProjection
                     var chunks = Math.Min(2 * runner.MaxParallelism, (end - begin) / MinTrianglesPerChunk);
                     if (chunks > 1)
                     {
-                        _pass.Set(this, begin, end, px, px0, pw, x.Length, w.Length);
+                        _pass.Set(this, begin, end, px, px0, pw);
                         runner.Run(_pass, chunks);
                     }
                     else
                     {
-                        ProjectRange(begin, end, x, x0, w);
+                        ProjectRange(begin, end, px, px0, pw);
                     }
                 }
             }
         }
     }
 
-    private void ProjectRange(int begin, int end, Span<double> x, Span<double> x0, Span<double> w)
+    /// <summary>
+    /// Projects triangles [begin, end) through pointers: the projection is the hot loop of xpbd's membrane, and the
+    /// corners were checked against the particle count in Refresh, so bounds checks would only cost.
+    /// </summary>
+    private unsafe void ProjectRange(int begin, int end, double* x, double* x0, double* w)
     {
-        for (var t = begin; t < end; t++)
+        fixed (Triangle* triangles = _triangles)
         {
-            ProjectTriangle(ref _triangles[t], x, x0, w);
+            for (var t = begin; t < end; t++)
+            {
+                ProjectTriangle(triangles + t, x, x0, w);
+            }
         }
     }
 
-    private static void ProjectTriangle(ref Triangle t, Span<double> x, Span<double> x0, Span<double> inverseMasses)
+    private static unsafe void ProjectTriangle(Triangle* t, double* x, double* x0, double* inverseMasses)
     {
-        double w0 = inverseMasses[t.First], w1 = inverseMasses[t.Second], w2 = inverseMasses[t.Third];
+        double w0 = inverseMasses[t->First], w1 = inverseMasses[t->Second], w2 = inverseMasses[t->Third];
         if (w0 == 0.0 && w1 == 0.0 && w2 == 0.0)
         {
             return;
         }
 
-        int i0 = 3 * t.First, i1 = 3 * t.Second, i2 = 3 * t.Third;
-        double p = t.P, q = t.Q, r = t.R, s = t.S;
+        int i0 = 3 * t->First, i1 = 3 * t->Second, i2 = 3 * t->Third;
+        double p = t->P, q = t->Q, r = t->R, s = t->S;
         double ax = x[i1] - x[i0], ay = x[i1 + 1] - x[i0 + 1], az = x[i1 + 2] - x[i0 + 2];
         double bx = x[i2] - x[i0], by = x[i2 + 1] - x[i0 + 1], bz = x[i2 + 2] - x[i0 + 2];
         double f1x = (p * ax) + (r * bx), f1y = (p * ay) + (r * by), f1z = (p * az) + (r * bz);
@@ -135,7 +142,7 @@ public sealed class MembraneProjection : IForceProjection
         var n22 = (f2x * f2x) + (f2y * f2y) + (f2z * f2z);
         var n12 = (f1x * f2x) + (f1y * f2y) + (f1z * f2z);
         double c1 = 0.5 * (n11 - 1.0), c2 = 0.5 * (n22 - 1.0), c3 = n12;
-        var gamma = t.Gamma;
+        var gamma = t->Gamma;
         if (gamma != 0.0)
         {
             // grad c . (x - x0): the same F-linear map applied to the corners' moves over the substep.
@@ -154,12 +161,12 @@ public sealed class MembraneProjection : IForceProjection
         var pyy = (w0 * b0y * b0y) + (w1 * q * q) + (w2 * s * s);
         var pxy = (w0 * b0x * b0y) + (w1 * p * q) + (w2 * r * s);
         var g = 1.0 + gamma;
-        var m11 = (g * pxx * n11) + t.Compliance11;
-        var m22 = (g * pyy * n22) + t.Compliance11;
-        var m12 = (g * pxy * n12) + t.Compliance12;
+        var m11 = (g * pxx * n11) + t->Compliance11;
+        var m22 = (g * pyy * n22) + t->Compliance11;
+        var m12 = (g * pxy * n12) + t->Compliance12;
         var m13 = g * ((pxx * n12) + (pxy * n11));
         var m23 = g * ((pxy * n22) + (pyy * n12));
-        var m33 = (g * ((pxx * n22) + (2.0 * pxy * n12) + (pyy * n11))) + t.Compliance33;
+        var m33 = (g * ((pxx * n22) + (2.0 * pxy * n12) + (pyy * n11))) + t->Compliance33;
         var k11 = (m22 * m33) - (m23 * m23);
         var k12 = (m13 * m23) - (m12 * m33);
         var k13 = (m12 * m23) - (m13 * m22);
@@ -186,7 +193,7 @@ public sealed class MembraneProjection : IForceProjection
         Move(x, i2, w2, r, s, ux, uy, uz, vx, vy, vz);
     }
 
-    private static void Move(Span<double> x, int i, double w, double bx, double by, double ux, double uy, double uz, double vx, double vy, double vz)
+    private static unsafe void Move(double* x, int i, double w, double bx, double by, double ux, double uy, double uz, double vx, double vy, double vz)
     {
         if (w == 0.0)
         {
@@ -277,12 +284,10 @@ public sealed class MembraneProjection : IForceProjection
         private double* _x;
         private double* _x0;
         private double* _w;
-        private int _coordinates;
-        private int _particles;
         private int _begin;
         private int _end;
 
-        public void Set(MembraneProjection owner, int begin, int end, double* x, double* x0, double* w, int coordinates, int particles)
+        public void Set(MembraneProjection owner, int begin, int end, double* x, double* x0, double* w)
         {
             _owner = owner;
             _begin = begin;
@@ -290,15 +295,12 @@ public sealed class MembraneProjection : IForceProjection
             _x = x;
             _x0 = x0;
             _w = w;
-            _coordinates = coordinates;
-            _particles = particles;
         }
 
         public void Execute(int chunk, int chunkCount)
         {
             var (begin, end) = Chunk.Range(chunk, chunkCount, _end - _begin);
-            _owner!.ProjectRange(
-                _begin + begin, _begin + end, new Span<double>(_x, _coordinates), new Span<double>(_x0, _coordinates), new Span<double>(_w, _particles));
+            _owner!.ProjectRange(_begin + begin, _begin + end, _x, _x0, _w);
         }
     }
 

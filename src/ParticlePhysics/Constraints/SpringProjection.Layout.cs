@@ -100,6 +100,11 @@ public sealed partial class SpringProjection
             _undamped &= _pairCoefficients[k] == 0.0;
         }
 
+        if (_undampedPairs.Length != (_undamped ? pairs : 0))
+        {
+            _undampedPairs = _undamped ? new UndampedSpring[pairs] : Array.Empty<UndampedSpring>();
+        }
+
         _preparedStep = double.NaN;
         _count = count;
         _particles = particles;

@@ -10,6 +10,7 @@ public sealed partial class SpringProjection
     {
         private SpringProjection? _owner;
         private PairSpring* _pairs;
+        private UndampedSpring* _undamped;
         private AnchoredSpring* _anchored;
         private double* _x;
         private double* _x0;
@@ -18,9 +19,10 @@ public sealed partial class SpringProjection
         private int _groupEnd;
 
         public void Set(
-            SpringProjection owner, int groupBegin, int groupEnd, PairSpring* pairs, AnchoredSpring* anchored, double* x,
-            double* x0, double* w)
+            SpringProjection owner, int groupBegin, int groupEnd, PairSpring* pairs, UndampedSpring* undamped,
+            AnchoredSpring* anchored, double* x, double* x0, double* w)
         {
+            _undamped = undamped;
             _owner = owner;
             _groupBegin = groupBegin;
             _groupEnd = groupEnd;
@@ -34,14 +36,18 @@ public sealed partial class SpringProjection
         public void Execute(int chunk, int chunkCount)
         {
             var (begin, end) = Chunk.Range(chunk, chunkCount, _groupEnd - _groupBegin);
-            _owner!.ProjectGroups(_groupBegin + begin, _groupBegin + end, _pairs, _anchored, _x, _x0, _w);
+            _owner!.ProjectGroups(_groupBegin + begin, _groupBegin + end, _pairs, _undamped, _anchored, _x, _x0, _w);
         }
     }
 
-    /// <summary>One batch over the runner's chunks: each chunk projects its share of the batch's pairs and anchored springs.</summary>
+    /// <summary>
+    /// One batch over the runner's chunks: each chunk projects its share of the batch's pairs (damped ones when given,
+    /// otherwise the undamped ones) and anchored springs.
+    /// </summary>
     private sealed unsafe class BatchPass : IParallelWork
     {
         private PairSpring* _pairs;
+        private UndampedSpring* _undamped;
         private AnchoredSpring* _anchored;
         private double* _x;
         private double* _x0;
@@ -50,11 +56,10 @@ public sealed partial class SpringProjection
         private int _pairEnd;
         private int _anchoredBegin;
         private int _anchoredEnd;
-        private bool _undamped;
 
         public void Set(
-            PairSpring* pairs, int pairBegin, int pairEnd, AnchoredSpring* anchored, int anchoredBegin, int anchoredEnd,
-            double* x, double* x0, double* w, bool undamped)
+            PairSpring* pairs, UndampedSpring* undamped, int pairBegin, int pairEnd, AnchoredSpring* anchored,
+            int anchoredBegin, int anchoredEnd, double* x, double* x0, double* w)
         {
             _undamped = undamped;
             _pairs = pairs;
@@ -71,9 +76,9 @@ public sealed partial class SpringProjection
         public void Execute(int chunk, int chunkCount)
         {
             var (pairBegin, pairEnd) = Chunk.Range(chunk, chunkCount, _pairEnd - _pairBegin);
-            if (_undamped)
+            if (_pairs is null)
             {
-                ProjectUndampedPairs(_pairs, _pairBegin + pairBegin, _pairBegin + pairEnd, _x, _w);
+                ProjectUndampedPairs(_undamped, _pairBegin + pairBegin, _pairBegin + pairEnd, _x, _w);
             }
             else
             {

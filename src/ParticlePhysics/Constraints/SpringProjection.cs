@@ -69,8 +69,11 @@ public sealed partial class SpringProjection : IForceProjection
     private double _preparedStep = double.NaN;
 
     // Every pair spring without damping: the projection then skips the damping's terms (the start positions and the
-    // move along the spring), a third of the memory each spring reads. The same values: c h (u . dx) adds 0.
+    // move along the spring), a third of the memory each spring reads, and reads its springs from _undampedPairs, the
+    // same springs without the c h field (24 bytes, not 32: the loop streams through them). The same values: c h (u . dx)
+    // adds 0.
     private bool _undamped;
+    private UndampedSpring[] _undampedPairs = Array.Empty<UndampedSpring>();
 
     // The layout (ConstraintPartition): batch b is _pairs[_pairStarts[b] ..] and _anchored[_anchoredStarts[b] ..];
     // group g is the batches [_groupBatchStarts[g], _groupBatchStarts[g + 1]); phase f the groups
@@ -164,6 +167,7 @@ public sealed partial class SpringProjection : IForceProjection
             fixed (double* x = context.Positions, x0 = &MemoryMarshal.GetReference(context.StartPositions))
             fixed (double* w = &MemoryMarshal.GetReference(context.InverseMasses))
             fixed (PairSpring* pairs = _pairs)
+            fixed (UndampedSpring* undamped = _undampedPairs)
             fixed (AnchoredSpring* anchored = _anchored)
             {
                 for (var f = 0; f + 1 < _phaseStarts.Length; f++)
@@ -176,7 +180,7 @@ public sealed partial class SpringProjection : IForceProjection
                         var chunks = Math.Min(groupEnd - groupBegin, springs / MinSpringsPerChunk);
                         if (chunks > 1)
                         {
-                            _groupPass.Set(this, groupBegin, groupEnd, pairs, anchored, x, x0, w);
+                            _groupPass.Set(this, groupBegin, groupEnd, pairs, undamped, anchored, x, x0, w);
                             runner.Run(_groupPass, chunks);
                             continue;
                         }
@@ -184,11 +188,11 @@ public sealed partial class SpringProjection : IForceProjection
                     else if (runner is not null)
                     {
                         // One group (one part): each batch as large as a colour, one hand-off each when it pays.
-                        ProjectBatchesSplit(runner, groupBegin, pairs, anchored, x, x0, w);
+                        ProjectBatchesSplit(runner, groupBegin, pairs, undamped, anchored, x, x0, w);
                         continue;
                     }
 
-                    ProjectGroups(groupBegin, groupEnd, pairs, anchored, x, x0, w);
+                    ProjectGroups(groupBegin, groupEnd, pairs, undamped, anchored, x, x0, w);
                 }
             }
         }
@@ -202,13 +206,14 @@ public sealed partial class SpringProjection : IForceProjection
 
     /// <summary>Projects the groups [begin, end) one after the other, each batch by batch: pairs, then anchored springs.</summary>
     private unsafe void ProjectGroups(
-        int begin, int end, PairSpring* pairs, AnchoredSpring* anchored, double* x, double* x0, double* w)
+        int begin, int end, PairSpring* pairs, UndampedSpring* undamped, AnchoredSpring* anchored, double* x, double* x0,
+        double* w)
     {
         for (var b = _groupBatchStarts[begin]; b < _groupBatchStarts[end]; b++)
         {
             if (_undamped)
             {
-                ProjectUndampedPairs(pairs, _pairStarts[b], _pairStarts[b + 1], x, w);
+                ProjectUndampedPairs(undamped, _pairStarts[b], _pairStarts[b + 1], x, w);
             }
             else
             {
@@ -228,7 +233,8 @@ public sealed partial class SpringProjection : IForceProjection
     /// runner (its springs share no particle, so any split gives the same bits).
     /// </summary>
     private unsafe void ProjectBatchesSplit(
-        IParallelRunner runner, int group, PairSpring* pairs, AnchoredSpring* anchored, double* x, double* x0, double* w)
+        IParallelRunner runner, int group, PairSpring* pairs, UndampedSpring* undamped, AnchoredSpring* anchored, double* x,
+        double* x0, double* w)
     {
         for (var b = _groupBatchStarts[group]; b < _groupBatchStarts[group + 1]; b++)
         {
@@ -238,14 +244,14 @@ public sealed partial class SpringProjection : IForceProjection
             var chunks = Math.Min(2 * runner.MaxParallelism, size / MinSpringsPerChunk);
             if (chunks > 1)
             {
-                _batchPass.Set(pairs, pairBegin, pairEnd, anchored, anchoredBegin, anchoredEnd, x, x0, w, _undamped);
+                _batchPass.Set(_undamped ? null : pairs, undamped, pairBegin, pairEnd, anchored, anchoredBegin, anchoredEnd, x, x0, w);
                 runner.Run(_batchPass, chunks);
                 continue;
             }
 
             if (_undamped)
             {
-                ProjectUndampedPairs(pairs, pairBegin, pairEnd, x, w);
+                ProjectUndampedPairs(undamped, pairBegin, pairEnd, x, w);
             }
             else
             {
@@ -262,7 +268,27 @@ public sealed partial class SpringProjection : IForceProjection
     /// </summary>
     private static unsafe void ProjectPairs(PairSpring* springs, int begin, int end, double* x, double* x0, double* w)
     {
-        for (PairSpring* p = springs + begin, last = springs + end; p < last; p++)
+        for (PairSpring* p = springs + begin, last = springs + end; ; p++)
+        {
+            p = ProjectPairRun(p, last, x, x0, w);
+            if (p >= last)
+            {
+                return;
+            }
+
+            ProjectStiffPair(p, x, x0, w);
+        }
+    }
+
+    /// <summary>
+    /// <see cref="ProjectPairs"/> from <paramref name="p"/> up to the first spring whose terms overflow, which it leaves
+    /// as it is and returns (or <paramref name="last"/>). No call in the loop: across one the JIT would keep every
+    /// value on the stack, as all vector registers are caller-saved, and the loop would spend more on the spills than
+    /// on the projection.
+    /// </summary>
+    private static unsafe PairSpring* ProjectPairRun(PairSpring* p, PairSpring* last, double* x, double* x0, double* w)
+    {
+        for (; p < last; p++)
         {
             // Unsigned ends (checked in Refresh), so that widening them to 64-bit offsets costs nothing.
             uint a = p->First, b = p->Second;
@@ -291,9 +317,12 @@ public sealed partial class SpringProjection : IForceProjection
             var moved = (ux * mx) + (uy * my) + (uz * mz);
             var numerator = (p->Stiffness * (l - p->RestLength)) + (p->Damping * moved);
             var denominator = ((p->Stiffness + p->Damping) * wsum) + 1.0;
-            var dlambda = denominator <= double.MaxValue && Math.Abs(numerator) <= double.MaxValue
-                ? -numerator / denominator
-                : StiffLimit(p->Stiffness, p->Damping, l - p->RestLength, moved, wsum);
+            if (!(denominator <= double.MaxValue && Math.Abs(numerator) <= double.MaxValue))
+            {
+                return p;
+            }
+
+            var dlambda = -numerator / denominator;
             double cx = dlambda * ux, cy = dlambda * uy, cz = dlambda * uz;
 
             // The two ends are distinct particles (checked in Refresh), so the values read above are still theirs.
@@ -304,15 +333,32 @@ public sealed partial class SpringProjection : IForceProjection
             xj[1] = xj1 - (wj * cy);
             xj[2] = xj2 - (wj * cz);
         }
+
+        return last;
     }
 
     /// <summary>
     /// <see cref="ProjectPairs"/> for springs without damping (c h = 0): dlambda = -k h^2 C / (k h^2 w + 1), without
     /// reading the start positions.
     /// </summary>
-    private static unsafe void ProjectUndampedPairs(PairSpring* springs, int begin, int end, double* x, double* w)
+    private static unsafe void ProjectUndampedPairs(UndampedSpring* springs, int begin, int end, double* x, double* w)
     {
-        for (PairSpring* p = springs + begin, last = springs + end; p < last; p++)
+        for (UndampedSpring* p = springs + begin, last = springs + end; ; p++)
+        {
+            p = ProjectUndampedRun(p, last, x, w);
+            if (p >= last)
+            {
+                return;
+            }
+
+            ProjectStiffUndamped(p, x, w);
+        }
+    }
+
+    /// <summary><see cref="ProjectUndampedPairs"/> up to the first spring whose terms overflow, as <see cref="ProjectPairRun"/>.</summary>
+    private static unsafe UndampedSpring* ProjectUndampedRun(UndampedSpring* p, UndampedSpring* last, double* x, double* w)
+    {
+        for (; p < last; p++)
         {
             uint a = p->First, b = p->Second;
             double wi = w[a], wj = w[b];
@@ -336,9 +382,12 @@ public sealed partial class SpringProjection : IForceProjection
             double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
             var numerator = p->Stiffness * (l - p->RestLength);
             var denominator = (p->Stiffness * wsum) + 1.0;
-            var dlambda = denominator <= double.MaxValue && Math.Abs(numerator) <= double.MaxValue
-                ? -numerator / denominator
-                : StiffLimit(p->Stiffness, 0.0, l - p->RestLength, 0.0, wsum);
+            if (!(denominator <= double.MaxValue && Math.Abs(numerator) <= double.MaxValue))
+            {
+                return p;
+            }
+
+            var dlambda = -numerator / denominator;
             double cx = dlambda * ux, cy = dlambda * uy, cz = dlambda * uz;
             xi[0] = xi0 + (wi * cx);
             xi[1] = xi1 + (wi * cy);
@@ -347,6 +396,53 @@ public sealed partial class SpringProjection : IForceProjection
             xj[1] = xj1 - (wj * cy);
             xj[2] = xj2 - (wj * cz);
         }
+
+        return last;
+    }
+
+    /// <summary>One pair spring whose terms overflow (<see cref="StiffLimit"/>), in the same operations as the loop up to there.</summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]
+    private static unsafe void ProjectStiffPair(PairSpring* p, double* x, double* x0, double* w)
+    {
+        uint a = p->First, b = p->Second;
+        double wi = w[a], wj = w[b];
+        double* xi = x + (3L * a), xj = x + (3L * b), x0i = x0 + (3L * a), x0j = x0 + (3L * b);
+        double dx = xi[0] - xj[0], dy = xi[1] - xj[1], dz = xi[2] - xj[2];
+        var mx = (xi[0] - x0i[0]) - (xj[0] - x0j[0]);
+        var my = (xi[1] - x0i[1]) - (xj[1] - x0j[1]);
+        var mz = (xi[2] - x0i[2]) - (xj[2] - x0j[2]);
+        var l = Math.Sqrt((dx * dx) + (dy * dy) + (dz * dz));
+        var inverse = 1.0 / l;
+        double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
+        var moved = (ux * mx) + (uy * my) + (uz * mz);
+        var dlambda = StiffLimit(p->Stiffness, p->Damping, l - p->RestLength, moved, wi + wj);
+        Move(xi, xj, wi, wj, dlambda * ux, dlambda * uy, dlambda * uz);
+    }
+
+    /// <summary><see cref="ProjectStiffPair"/> without damping.</summary>
+    [MethodImpl(MethodImplOptions.NoInlining)]
+    private static unsafe void ProjectStiffUndamped(UndampedSpring* p, double* x, double* w)
+    {
+        uint a = p->First, b = p->Second;
+        double wi = w[a], wj = w[b];
+        double* xi = x + (3L * a), xj = x + (3L * b);
+        double dx = xi[0] - xj[0], dy = xi[1] - xj[1], dz = xi[2] - xj[2];
+        var l = Math.Sqrt((dx * dx) + (dy * dy) + (dz * dz));
+        var inverse = 1.0 / l;
+        double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
+        var dlambda = StiffLimit(p->Stiffness, 0.0, l - p->RestLength, 0.0, wi + wj);
+        Move(xi, xj, wi, wj, dlambda * ux, dlambda * uy, dlambda * uz);
+    }
+
+    /// <summary>x_i += w_i c, x_j -= w_j c: the move of a pair spring's two ends.</summary>
+    private static unsafe void Move(double* xi, double* xj, double wi, double wj, double cx, double cy, double cz)
+    {
+        xi[0] += wi * cx;
+        xi[1] += wi * cy;
+        xi[2] += wi * cz;
+        xj[0] -= wj * cx;
+        xj[1] -= wj * cy;
+        xj[2] -= wj * cz;
     }
 
     /// <summary>Projects the anchored springs [begin, end) once: the pair formula with a fixed end (w_j = 0, x0_j = x_j).</summary>
@@ -435,6 +531,17 @@ public sealed partial class SpringProjection : IForceProjection
             _pairs[s].Damping = _pairCoefficients[(2 * s) + 1] * h;
         }
 
+        for (var s = 0; s < _undampedPairs.Length; s++)
+        {
+            _undampedPairs[s] = new UndampedSpring
+            {
+                First = _pairs[s].First,
+                Second = _pairs[s].Second,
+                Stiffness = _pairs[s].Stiffness,
+                RestLength = _pairs[s].RestLength,
+            };
+        }
+
         for (var s = 0; s < _anchored.Length; s++)
         {
             _anchored[s].Stiffness = _anchoredCoefficients[2 * s] * hh;
@@ -452,6 +559,16 @@ public sealed partial class SpringProjection : IForceProjection
         public uint Second;
         public double Stiffness; // k h^2
         public double Damping; // c h
+        public double RestLength;
+    }
+
+    /// <summary>A pair spring without damping as the projection reads it: 24 bytes.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    private struct UndampedSpring
+    {
+        public uint First;
+        public uint Second;
+        public double Stiffness; // k h^2
         public double RestLength;
     }
 

@@ -1,4 +1,6 @@
 using System;
+using System.Runtime.CompilerServices;
+using System.Runtime.InteropServices;
 using ParticlePhysics.Internal;
 using ParticlePhysics.Numerics;
 
@@ -337,7 +339,15 @@ public sealed class TriangleMembrane : IForceGenerator, IPotentialEnergy, IBound
             l[8] = area * sxy;
             l[9] = area * 2.0 * mu;
             l[10] = area * lambda;
-            Product(l, v, positionJacobianTimesVelocity, i0, i1, i2, p, q, r, s);
+            unsafe
+            {
+                // CheckSizes: v and the product hold every particle, and every corner is one (checked in Add).
+                fixed (double* lp = l, vp = v, jv = positionJacobianTimesVelocity)
+                {
+                    Product(lp, vp, jv, i0, i1, i2, p, q, r, s);
+                }
+            }
+
             l[6] *= positionScale;
             l[7] *= positionScale;
             l[8] *= positionScale;
@@ -378,21 +388,21 @@ public sealed class TriangleMembrane : IForceGenerator, IPotentialEnergy, IBound
     {
         _linearized.Check(nameof(TriangleMembrane), _count, 0);
         CheckSizes(w.Length, w.Length, result.Length);
-        var wr = w.ForReading();
-        for (var t = 0; t < _count; t++)
+        unsafe
         {
-            var o = Stride * t;
-            Product(
-                _linear.AsSpan(LinearStride * t, LinearStride),
-                wr,
-                result,
-                3 * _corners[3 * t],
-                3 * _corners[(3 * t) + 1],
-                3 * _corners[(3 * t) + 2],
-                _parameters[o],
-                _parameters[o + 1],
-                _parameters[o + 2],
-                _parameters[o + 3]);
+            // CheckSizes: w and result hold every particle; every corner is one (checked in Add), and the linearisation
+            // and parameters hold _count triangles. The product runs once per conjugate-gradient iteration: no bounds
+            // checks in it.
+            fixed (double* wp = &MemoryMarshal.GetReference(w), rp = result, lp = _linear, parameters = _parameters)
+            fixed (int* corners = _corners)
+            {
+                for (var t = 0; t < _count; t++)
+                {
+                    var o = parameters + (Stride * t);
+                    var c = corners + (3 * t);
+                    Product(lp + (LinearStride * t), wp, rp, 3 * c[0], 3 * c[1], 3 * c[2], o[0], o[1], o[2], o[3]);
+                }
+            }
         }
     }
 
@@ -400,7 +410,7 @@ public sealed class TriangleMembrane : IForceGenerator, IPotentialEnergy, IBound
     /// result += K w for one triangle: dF from w, dE = sym(F^T dF), dS = 2 mu dE + lambda tr(dE) I (scaled), then
     /// dP = F dS + dF S+ and the corners' -A0 dP Dm^-T (A0 and the scales are in l).
     /// </summary>
-    private static void Product(Span<double> l, Span<double> w, Span<double> result, int i0, int i1, int i2, double p, double q, double r, double s)
+    private static unsafe void Product(double* l, double* w, double* result, int i0, int i1, int i2, double p, double q, double r, double s)
     {
         double ax = w[i1] - w[i0], ay = w[i1 + 1] - w[i0 + 1], az = w[i1 + 2] - w[i0 + 2];
         double bx = w[i2] - w[i0], by = w[i2 + 1] - w[i0 + 1], bz = w[i2 + 2] - w[i0 + 2];
@@ -530,27 +540,27 @@ public sealed class TriangleMembrane : IForceGenerator, IPotentialEnergy, IBound
         double gjx = (f1x * bjx) + (f2x * bjy), gjy = (f1y * bjx) + (f2y * bjy), gjz = (f1z * bjx) + (f2z * bjy);
         var along = mu * ((bix * bjx) + (biy * bjy));
         var geometric = (bix * ((l[6] * bjx) + (l[8] * bjy))) + (biy * ((l[8] * bjx) + (l[7] * bjy)));
-        Span<double> fi = stackalloc double[] { f1x, f1y, f1z };
-        Span<double> fj = stackalloc double[] { f2x, f2y, f2z };
-        Span<double> gi = stackalloc double[] { gix, giy, giz };
-        Span<double> gj = stackalloc double[] { gjx, gjy, gjz };
-        for (var row = 0; row < 3; row++)
-        {
-            for (var col = 0; col < 3; col++)
-            {
-                var value = (along * ((fi[row] * fi[col]) + (fj[row] * fj[col])))
-                    + (mu * gj[row] * gi[col])
-                    + (lambda * gi[row] * gj[col]);
-                if (row == col)
-                {
-                    value += geometric;
-                }
 
-                block[(3 * row) + col] = -value;
-            }
-        }
+        // Written out entry by entry (row, col): the blocks are assembled for the preconditioner at every linearisation.
+        block[0] = -(Entry(along, mu, lambda, f1x, f1x, f2x, f2x, gjx, gix, gix, gjx) + geometric);
+        block[1] = -Entry(along, mu, lambda, f1x, f1y, f2x, f2y, gjx, giy, gix, gjy);
+        block[2] = -Entry(along, mu, lambda, f1x, f1z, f2x, f2z, gjx, giz, gix, gjz);
+        block[3] = -Entry(along, mu, lambda, f1y, f1x, f2y, f2x, gjy, gix, giy, gjx);
+        block[4] = -(Entry(along, mu, lambda, f1y, f1y, f2y, f2y, gjy, giy, giy, gjy) + geometric);
+        block[5] = -Entry(along, mu, lambda, f1y, f1z, f2y, f2z, gjy, giz, giy, gjz);
+        block[6] = -Entry(along, mu, lambda, f1z, f1x, f2z, f2x, gjz, gix, giz, gjx);
+        block[7] = -Entry(along, mu, lambda, f1z, f1y, f2z, f2y, gjz, giy, giz, gjy);
+        block[8] = -(Entry(along, mu, lambda, f1z, f1z, f2z, f2z, gjz, giz, giz, gjz) + geometric);
     }
 
+    /// <summary>Entry (row, col) of a block without its geometric part: the row's and column's components given.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    private static double Entry(
+        double along, double mu, double lambda, double f1Row, double f1Col, double f2Row, double f2Col, double gjRow,
+        double giCol, double giRow, double gjCol) =>
+        (along * ((f1Row * f1Col) + (f2Row * f2Col))) + (mu * gjRow * giCol) + (lambda * giRow * gjCol);
+
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static (double X, double Y) Beta(int corner, double p, double q, double r, double s) => corner switch
     {
         0 => (-(p + r), -(q + s)),
