@@ -116,8 +116,10 @@ public sealed partial class ContactSet
             }
 
             var radius = Radius(radii, i);
-            for (var k = 0; k < _obstacles.Count; k++)
+            var candidates = ObstaclesNear(i, Read(x, i), TouchReach(radius), -1);
+            for (var c = 0; c < candidates; c++)
             {
+                var k = _candidates[c];
                 var obstacle = _obstacles[k];
                 var q = Read(x, i) - obstacle.OffsetAt(context.Time);
                 var gap = obstacle.Distance(q.X, q.Y, q.Z, out var nx, out var ny, out var nz) - radius;
@@ -173,8 +175,20 @@ public sealed partial class ContactSet
         var best = double.PositiveInfinity;
         var which = -1;
         var radius = Radius(radii, i);
-        for (var k = 0; k < _obstacles.Count; k++)
+
+        // The path from here to the end of the step stays within its chord's box grown by A L^2 / 8 (a cubic departs
+        // from its chord by at most that, A bounding |p''| over the stretch of length L): the obstacles out of that box
+        // grown by the radius cannot be touched.
+        var to = context.Dt;
+        _paths.Evaluate(i, from, out var a, out _);
+        _paths.Evaluate(i, to, out var b, out _);
+        var bulge = 0.125 * _paths.AccelerationBound(i, from, to) * (to - from) * (to - from);
+        var lo = new Vector3d(Math.Min(a.X, b.X), Math.Min(a.Y, b.Y), Math.Min(a.Z, b.Z));
+        var hi = new Vector3d(Math.Max(a.X, b.X), Math.Max(a.Y, b.Y), Math.Max(a.Z, b.Z));
+        var candidates = ObstaclesNear(i, lo, hi, TouchReach(radius) + bulge, -1);
+        for (var c = 0; c < candidates; c++)
         {
+            var k = _candidates[c];
             if (_resting.IsRestingOn(i, k))
             {
                 continue; // it rests there: the resting stage holds it

@@ -38,7 +38,7 @@ public sealed partial class ContactSet
             }
         }
 
-        if (!_sweptGrid.TryFindPairs(min, max, n, PairFilter, _maxCandidatePairs))
+        if (!_sweptGrid.TryFindPairs(min, max, n, BroadPhaseFilter(), _maxCandidatePairs))
         {
             RefuseCandidatePairs(n);
         }

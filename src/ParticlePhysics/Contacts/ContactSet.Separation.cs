@@ -65,13 +65,25 @@ public sealed partial class ContactSet
             PropagateShock(in context, first, second, inverseMasses, radii);
         }
 
-        for (var i = 0; i < n; i++)
+        var x = context.Positions;
+        for (var i = 0; i < n && _obstacles.Count > 0; i++)
         {
-            if (inverseMasses[i] != 0.0)
+            if (inverseMasses[i] == 0.0)
             {
-                for (var k = 0; k < _obstacles.Count; k++)
+                continue;
+            }
+
+            // Every obstacle it may be inside, in index order; a push out of one moves it, so the candidates after that
+            // one are asked again from where it is now (as the loop over every obstacle would meet them).
+            var radius = Radius(radii, i);
+            var candidates = ObstaclesNear(i, Read(x, i), radius, -1);
+            for (var c = 0; c < candidates; c++)
+            {
+                var k = _candidates[c];
+                if (SeparateFromObstacle(in context, i, k, radius, time) != 0.0)
                 {
-                    _ = SeparateFromObstacle(in context, i, k, Radius(radii, i), time);
+                    candidates = ObstaclesNear(i, Read(x, i), radius, k);
+                    c = -1;
                 }
             }
         }
@@ -93,8 +105,10 @@ public sealed partial class ContactSet
             }
 
             var radius = Radius(radii, i);
-            for (var k = 0; k < _obstacles.Count; k++)
+            var candidates = ObstaclesNear(i, Read(x, i), (1.25 * radius) + 1e-6, -1);
+            for (var c = 0; c < candidates; c++)
             {
+                var k = _candidates[c];
                 var obstacle = _obstacles[k];
                 var q = Read(x, i) - obstacle.OffsetAt(time);
                 var gap = obstacle.Distance(q.X, q.Y, q.Z, out _, out _, out _) - radius;

@@ -53,6 +53,7 @@ public sealed partial class ContactSet
         var h = context.Dt;
         var end = context.Time + h;
         _substep.End = end;
+        _colliders.Update(_obstacles, context.Time, end);
         if (ParticleCollisions)
         {
             var swept = MarkFastParticles(n, x, previous, radii);
@@ -86,9 +87,13 @@ public sealed partial class ContactSet
                 continue;
             }
 
+            // The obstacles near its straight move, in index order; a projection moves it, so those after the one that
+            // moved it are asked again from its new place (as the loop over every obstacle would meet them).
             var radius = Radius(radii, i);
-            for (var k = 0; k < _obstacles.Count; k++)
+            var candidates = ObstaclesNear(i, Read(previous, i), Read(x, i), TouchReach(radius), -1);
+            for (var c = 0; c < candidates; c++)
             {
+                var k = _candidates[c];
                 var obstacle = _obstacles[k];
                 var position = Read(x, i);
                 var q = position - obstacle.OffsetAt(end);
@@ -128,6 +133,8 @@ public sealed partial class ContactSet
 
                 Write(x, i, position);
                 AddSubstepContact(k, i, -1, normal, depth, Vector3d.Dot(Read(v, i) - obstacle.Velocity, normal));
+                candidates = ObstaclesNear(i, Read(previous, i), position, TouchReach(radius), k);
+                c = -1;
             }
         }
     }
@@ -308,7 +315,7 @@ public sealed partial class ContactSet
                 return s < h;
             }
 
-            s += ContactSearch.SafeStep(gap, rate, 0.0);
+            s += obstacle.SafeStep(q.X, q.Y, q.Z, velocity.X, velocity.Y, velocity.Z, radius, gap, rate, 0.0);
             if (!(s < h))
             {
                 return false;
@@ -349,7 +356,7 @@ public sealed partial class ContactSet
             }
         }
 
-        if (!_restingGrid.TryFindPairs(min, max, n, PairFilter, _maxCandidatePairs))
+        if (!_restingGrid.TryFindPairs(min, max, n, BroadPhaseFilter(), _maxCandidatePairs))
         {
             RefuseCandidatePairs(n);
         }

@@ -37,9 +37,6 @@ namespace ParticlePhysics.Contacts;
 /// </remarks>
 public sealed partial class ContactSet : IStatefulConstraintSet
 {
-    /// <summary>The most obstacles one set holds (each resting particle keeps the ones it rests on as bits of a mask).</summary>
-    public const int MaxObstacles = 64;
-
     /// <summary>The most impacts <see cref="Impacts"/> keeps per step (<see cref="ImpactCount"/> counts them all).</summary>
     public const int MaxRecordedImpacts = 4096;
 
@@ -71,6 +68,11 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     private readonly ShockOrder _shock = new();
     private readonly SubstepContacts _substep = new();
     private readonly ContactLog _log = new(MaxRecordedImpacts);
+    private readonly ObstacleBroadPhase _colliders = new();
+    private readonly LayeredPairFilter _layered = new();
+    private int[] _candidates = Array.Empty<int>();
+    private CollisionFilter[] _particleFilters = Array.Empty<CollisionFilter>();
+    private bool _anyParticleFilter;
     private int _capacity = -1;
 
     /// <summary>The obstacles, in the order they were added (an obstacle's index is its place here).</summary>
@@ -187,7 +189,8 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     public void DiscardStep() => _log.Restore();
 
     /// <summary>Adds an obstacle; it acts from the next step on.</summary>
-    /// <exception cref="ArgumentException">It is already in the set, or the set holds <see cref="MaxObstacles"/>.</exception>
+    /// <remarks>Any number: a broad phase over the obstacles' boxes (<see cref="Obstacle.TryGetBounds"/>) tests each particle only against those near it.</remarks>
+    /// <exception cref="ArgumentException">It is already in the set.</exception>
     public void Add(Obstacle obstacle)
     {
         Guard.NotNull(obstacle, nameof(obstacle));
@@ -196,17 +199,51 @@ public sealed partial class ContactSet : IStatefulConstraintSet
             throw new ArgumentException("This obstacle is already in the contact set.", nameof(obstacle));
         }
 
-        if (_obstacles.Count == MaxObstacles)
-        {
-            throw new ArgumentException(
-                $"A contact set holds at most {MaxObstacles} obstacles; add another set for more.", nameof(obstacle));
-        }
-
         _obstacles.Add(obstacle);
     }
 
     /// <summary>Removes an obstacle; returns false when it was not in the set. The indices of those after it shift down.</summary>
     public bool Remove(Obstacle obstacle) => _obstacles.Remove(obstacle);
+
+    /// <summary>
+    /// Puts the particles <paramref name="first"/> to <paramref name="first"/> + <paramref name="count"/> - 1 (a cloth,
+    /// a rope, a body) under <paramref name="filter"/>: they meet an obstacle, or another particle, only when the two
+    /// filters accept each other (<see cref="CollisionFilter"/>). Particles never set have the default, layer 1 and
+    /// every layer; indices past the world's particles apply to the particles added there later.
+    /// </summary>
+    /// <exception cref="ArgumentOutOfRangeException"><paramref name="first"/> or <paramref name="count"/> is negative, or their sum passes <see cref="ParticleWorld.MaxParticles"/>.</exception>
+    public void SetParticleFilter(int first, int count, CollisionFilter filter)
+    {
+        if (first < 0 || first > ParticleWorld.MaxParticles)
+        {
+            throw new ArgumentOutOfRangeException(nameof(first), first, $"first must be a particle index from 0 to {ParticleWorld.MaxParticles}; got {first}.");
+        }
+
+        if (count < 0 || count > ParticleWorld.MaxParticles - first)
+        {
+            throw new ArgumentOutOfRangeException(nameof(count), count, $"count must be from 0 to {ParticleWorld.MaxParticles - first} (first + count at most {ParticleWorld.MaxParticles}); got {count}.");
+        }
+
+        if (_particleFilters.Length < first + count)
+        {
+            Array.Resize(ref _particleFilters, Math.Max(first + count, 2 * _particleFilters.Length));
+            _layered.Use(_particleFilters);
+        }
+
+        _particleFilters.AsSpan(first, count).Fill(filter);
+        _anyParticleFilter |= filter != CollisionFilter.Default;
+    }
+
+    /// <summary>The filter of particle <paramref name="particle"/> (<see cref="SetParticleFilter"/>; the default if never set).</summary>
+    public CollisionFilter GetParticleFilter(int particle)
+    {
+        if (particle < 0)
+        {
+            throw new ArgumentOutOfRangeException(nameof(particle), particle, $"particle must be an index >= 0; got {particle}.");
+        }
+
+        return ParticleFilter(particle);
+    }
 
     /// <inheritdoc />
     /// <remarks>The stages listed on the class; the end state is corrected in place.</remarks>
@@ -217,6 +254,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         EnsureCapacity(n);
         _log.Clear();
         _pairs.Clear();
+        _colliders.Update(_obstacles, context.Time, context.Time + context.Dt);
         SetPaths(in context);
         _resting.Clear(n);
         if (ParticleCollisions)
