@@ -104,7 +104,7 @@ internal static class Guard
     /// <summary>
     /// <paramref name="value"/> / |value| for a finite non-zero vector, also when |value| overflows or underflows
     /// (computed then from value scaled by its largest component); a vector whose length is a normal double is divided
-    /// by it directly, bit for bit as before.
+    /// by it directly (one rounding fewer).
     /// </summary>
     public static Vector3d Direction(Vector3d value, string name)
     {

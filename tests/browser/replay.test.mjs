@@ -11,7 +11,9 @@
 //     anchors, springs, rods, surface);
 //   - where there are colliders, they are drawn (hiding them changes the picture, showing them again restores it),
 //     a still one stays put and a moving one moves (with everything else hidden, two times give the same picture,
-//     or not).
+//     or not);
+//   - a run with --profile shows each stage's time per step for the frame on screen (a stacked bar and a line that
+//     follow the slider), and a run without shows no such line.
 // A last page, the cloth's with radii, rods, cables, anchors and one collider of each kind (the box moving) written
 // into its scene, checks the drawing of what no scenario has all of; and the pages of three sample scenes (the
 // scene command), the playground among them with every object and collider kind of the scene format, loads too.
@@ -77,6 +79,8 @@ if (!existsSync(demo)) throw new Error(`the demo is not built at ${demo}: run do
 const cases = scenarios().map((name) => ({ name, args: [name], exit: 0, scene: expected[name] }));
 cases.push({ name: "cloth-32x32", args: ["cloth", "--resolution", "1/31", "--duration", "2"], exit: 0 });
 cases.push({ name: "cloth-diverged", args: ["cloth", "--dt", "0.0166667"], exit: 3 });
+cases.push({ name: "pendulum-profiled", args: ["pendulum", "--duration", "2", "--profile"], exit: 0, profile: true });
+cases.push({ name: "scene-playground-profiled", args: ["scene", join(scenes, "playground.json"), "--duration", "2", "--profile"], exit: 0, profile: true });
 for (const [name, c] of Object.entries(sceneCases)) cases.push({ name, args: ["scene", join(scenes, c.file)], exit: 0, scene: c.scene });
 for (const c of cases) {
   c.file = join(work, c.name + ".html");
@@ -270,6 +274,41 @@ for (const c of cases.filter((c) => !c.plain)) {
       const beforeReset = await rendersNow();
       await page.dblclick("#view");   // back to the home view for the checks that follow
       await settled(beforeReset);
+    });
+
+    it(c.profile ? "shows each stage's time per step at the frame on screen" : "shows no stage times without --profile", async () => {
+      const line = page.locator("#profile");
+      if (!c.profile) {
+        assert.equal(await line.isVisible(), false);
+        assert.equal(await page.evaluate(() => window.replay.stageTimes(0)), null);
+        return;
+      }
+      assert.equal(await line.isVisible(), true);
+      const us = String.raw`[0-9]+(\.[0-9]+)? us`;
+      const pattern = new RegExp(`^step ${us}: integration ${us}, forces ${us}, constraints ${us}, contacts ${us}$`);
+      const duration = await page.evaluate(() => window.replay.duration);
+      const shown = [];
+      for (const t of [0, duration / 3, duration]) {
+        await seekWithSlider(t);
+        const text = await page.evaluate(() => window.replay.profileText);
+        assert.match(text, pattern);
+        assert.ok((await line.textContent()).includes(text), "the line shows the text");
+        // The line is the frame's own times (or the next frame's, for the first, which no step led to), and its total
+        // is their sum.
+        const { frame, times, data } = await page.evaluate(() => {
+          const data = JSON.parse(document.getElementById("replay-data").textContent).profile.seconds;
+          return { frame: window.replay.profileFrame, times: window.replay.profileTimes, data };
+        });
+        assert.deepEqual(times, data.slice(4 * frame, 4 * frame + 4));
+        assert.ok(times.every((s) => s >= 0) && times.some((s) => s > 0), `stage times ${times}`);
+        const numbers = [...text.matchAll(/([0-9.]+) us/g)].map((m) => Number(m[1]));
+        const sum = numbers.slice(1).reduce((a, b) => a + b, 0);
+        assert.ok(Math.abs(sum - numbers[0]) <= 0.02 * numbers[0] + 0.2, `the stages ${numbers.slice(1)} add up to the step ${numbers[0]}`);
+        shown.push(text);
+        const bars = await page.locator("#profile .bar span").count();
+        assert.equal(bars, 4, "a bar segment per stage");
+      }
+      assert.ok(new Set(shown).size >= 2, "other frames show other times: " + shown.join(" | "));
     });
 
     if (c.scene) {

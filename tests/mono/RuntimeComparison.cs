@@ -18,6 +18,8 @@ using ParticlePhysics.Driver;
 using ParticlePhysics.Integrators;
 using ParticlePhysics.Parallel;
 using ParticlePhysics.Scenarios;
+using ParticlePhysics.Scenes;
+using ParticlePhysics.Scenes.Meshes;
 using ParticlePhysics.Snapshots;
 using UnityEngine.StandIn;
 
@@ -51,6 +53,7 @@ namespace ParticlePhysics.RuntimeComparison
                 RunnerHandOffs();
                 UnitySample();
                 Constraints();
+                Scenes();
             }
 
             if (timings)
@@ -453,6 +456,89 @@ namespace ParticlePhysics.RuntimeComparison
             {
                 world.Step(integrator, dt);
             }
+        }
+
+        // Scene files: numbers of 1 to 25 digits at exponents from -300 to 280, written by integer arithmetic (the
+        // runtimes format doubles differently), read as particle positions from JSON and as vertices from OBJ, whose
+        // bits must agree (Mono's own double.Parse is off by an ulp on some of them); then a sample scene, stepped.
+        private static void Scenes()
+        {
+            var seed = 20261203UL;
+            var numbers = new string[3000];
+            for (var i = 0; i < numbers.Length; i++)
+            {
+                numbers[i] = DecimalText(ref seed);
+            }
+
+            var json = new System.Text.StringBuilder("{ \"gravity\": [0, 0, 0], \"objects\": [{ \"type\": \"particles\", \"positions\": [");
+            var obj = new System.Text.StringBuilder();
+            for (var i = 0; i < numbers.Length; i += 3)
+            {
+                json.Append(i == 0 ? "[" : ", [").Append(numbers[i]).Append(", ").Append(numbers[i + 1]).Append(", ").Append(numbers[i + 2]).Append(']');
+                obj.Append("v ").Append(numbers[i]).Append(' ').Append(numbers[i + 1]).Append(' ').Append(numbers[i + 2]).Append('\n');
+            }
+
+            json.Append("] }] }");
+            obj.Append("f 1 2 3\n");
+            var world = Scene.Parse(json.ToString(), "numbers.json").Build();
+            var hash = new BitHash();
+            hash.Add(world.Positions);
+            Print("scene/numbers", hash);
+
+            var path = Path.Combine(Path.GetTempPath(), "pp-runtime-comparison-" + Process.GetCurrentProcess().Id + ".obj");
+            try
+            {
+                File.WriteAllText(path, obj.ToString());
+                var mesh = ObjReader.Read(path, "numbers.obj");
+                var vertices = new BitHash();
+                vertices.Add(mesh.Vertices);
+                Print("scene/obj-numbers", vertices);
+            }
+            finally
+            {
+                File.Delete(path);
+            }
+
+            var cradle = Scene.Load("samples/scenes/newtons-cradle.json");
+            var cradleWorld = cradle.Build();
+            var integrator = IntegratorCatalog.Create("rk4");
+            for (var step = 0; step < 500; step++)
+            {
+                cradleWorld.Step(integrator, 0.001);
+            }
+
+            Print("scene/newtons-cradle", StateHash(cradleWorld, integrator));
+        }
+
+        // A decimal number of 1 to 25 digits (the first not 0), a point somewhere, an exponent from -300 to 280, from an LCG.
+        private static string DecimalText(ref ulong seed)
+        {
+            var text = new System.Text.StringBuilder();
+            var digits = 1 + (int)(Next(ref seed) % 25);
+            var point = (int)(Next(ref seed) % (ulong)(digits + 1));
+            if (Next(ref seed) % 2 == 0)
+            {
+                text.Append('-');
+            }
+
+            for (var d = 0; d < digits; d++)
+            {
+                if (d == point && d > 0)
+                {
+                    text.Append('.');
+                }
+
+                text.Append((char)((d == 0 ? '1' : '0') + (int)(Next(ref seed) % (d == 0 ? 9UL : 10UL)))); // JSON: no leading 0
+            }
+
+            var exponent = (int)(Next(ref seed) % 581) - 300; // at most 25 digits before the point: below 1e306
+            return text.Append('e').Append(exponent.ToString(CultureInfo.InvariantCulture)).ToString();
+        }
+
+        private static ulong Next(ref ulong seed)
+        {
+            seed = (seed * 6364136223846793005UL) + 1442695040888963407UL;
+            return seed >> 33;
         }
 
         private static ulong StateHash(ParticleWorld world, IIntegrator integrator)

@@ -184,6 +184,27 @@ internal static class ReplayPage
             }
 
             json.WriteEndArray();
+            if (recorder.StageTimes is { } stageTimes)
+            {
+                // --profile: each stage's mean time per step (seconds) since the frame before, frame after frame.
+                json.WriteStartObject("profile");
+                json.WriteStartArray("stages");
+                foreach (var name in ReplayRecorder.StageNames)
+                {
+                    json.WriteStringValue(name);
+                }
+
+                json.WriteEndArray();
+                json.WriteStartArray("seconds");
+                foreach (var seconds in stageTimes)
+                {
+                    json.WriteRawValue(Numbers.Brief(Math.Max(0.0, seconds)));
+                }
+
+                json.WriteEndArray();
+                json.WriteEndObject();
+            }
+
             json.WriteString("frames", "float32 bits minus the previous frame's, 4 byte planes, zlib, base64");
             json.WriteEndObject();
         }

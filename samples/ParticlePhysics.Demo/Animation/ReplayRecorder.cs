@@ -8,7 +8,8 @@ namespace ParticlePhysics.Demo.Animation;
 /// Records a particle run for a replay: the positions at the display rate (a frame every 1/60 s of simulated time,
 /// fewer when the particles are many enough that the frames would pass <see cref="MaxFrameBytes"/>), in single
 /// precision, plus the run's few table values at each frame. The page interpolates between frames, so a coarser
-/// recording still plays smoothly. Frames are the output rows of their steps, so their time is step * dt.
+/// recording still plays smoothly. Frames are the output rows of their steps, so their time is step * dt. With
+/// <c>--profile</c> each frame also keeps the mean time per step of each stage over the steps since the frame before.
 /// </summary>
 internal sealed class ReplayRecorder : IRunObserver
 {
@@ -25,15 +26,21 @@ internal sealed class ReplayRecorder : IRunObserver
     private readonly List<float> _positions = new();
     private readonly List<double> _times = new();
     private readonly List<double> _values = new();
+    private readonly StageTimings? _timings;
+    private readonly List<double> _stageTimes = new();
+    private StepProfile _lastTotal;
+    private int _lastSteps;
     private int _lastStep = -1;
     private long _nextFrame;
 
     /// <param name="setup">The particle scenario or scene: rows hold x{i}, y{i}, z{i} at 1 + 6 i.</param>
     /// <param name="particleCount">Its number of particles.</param>
     /// <param name="plan">The run.</param>
-    public ReplayRecorder(ScenarioSetup setup, int particleCount, RunPlan plan)
+    /// <param name="timings">The run's stage timings (<c>--profile</c>), read at each frame, or null.</param>
+    public ReplayRecorder(ScenarioSetup setup, int particleCount, RunPlan plan, StageTimings? timings = null)
     {
         _plan = plan;
+        _timings = timings;
         _count = particleCount;
         ValueNames = Array.FindAll(ToArray(setup.TableColumns), c => c != "t");
         _valueColumns = Array.ConvertAll(ValueNames, setup.IndexOf);
@@ -60,6 +67,15 @@ internal sealed class ReplayRecorder : IRunObserver
 
     /// <summary>The <see cref="ValueNames"/> of each frame, frame after frame.</summary>
     public IReadOnlyList<double> Values => _values;
+
+    /// <summary>The stages whose times <see cref="StageTimes"/> holds, in its order.</summary>
+    public static readonly string[] StageNames = { "integration", "forces", "constraints", "contacts" };
+
+    /// <summary>
+    /// With <c>--profile</c>: each stage's mean time per step in seconds (<see cref="StageNames"/>), frame after frame,
+    /// over the steps since the frame before (0 for a frame with none, such as the first); null without.
+    /// </summary>
+    public IReadOnlyList<double>? StageTimes => _timings is null ? null : _stageTimes;
 
     /// <summary>How the run ended, once it has.</summary>
     public RunOutcome? Outcome { get; private set; }
@@ -109,6 +125,24 @@ internal sealed class ReplayRecorder : IRunObserver
         {
             _values.Add(row[column]);
         }
+
+        if (_timings is not null)
+        {
+            RecordStageTimes(_timings);
+        }
+    }
+
+    private void RecordStageTimes(StageTimings timings)
+    {
+        var total = timings.Total;
+        var steps = timings.Steps - _lastSteps;
+        var scale = steps > 0 ? 1.0 / steps : 0.0;
+        _stageTimes.Add((total.IntegrationSeconds - _lastTotal.IntegrationSeconds) * scale);
+        _stageTimes.Add((total.ForceSeconds - _lastTotal.ForceSeconds) * scale);
+        _stageTimes.Add((total.ConstraintSeconds - _lastTotal.ConstraintSeconds) * scale);
+        _stageTimes.Add((total.ContactSeconds - _lastTotal.ContactSeconds) * scale);
+        _lastTotal = total;
+        _lastSteps = timings.Steps;
     }
 
     private static string[] ToArray(IReadOnlyList<string> list)

@@ -25,6 +25,7 @@ internal sealed class CommonOptions
         };
         Tolerance = Options.Number("--tolerance", "rk45's error bound per internal step (relative to 1 + |y|)", string.Empty, 1e-8, NumberRule.Tolerance);
         Substeps = scenario.IsPlainOde ? null : SubstepsOption();
+        Profile = scenario.IsPlainOde ? null : ProfileOption();
     }
 
     public Option<string> Integrator { get; }
@@ -46,10 +47,19 @@ internal sealed class CommonOptions
     /// <summary><c>--substeps</c>, for particle scenarios only (xpbd needs positions and velocities).</summary>
     public Option<int?>? Substeps { get; }
 
+    /// <summary><c>--profile</c>, for particle scenarios only (a plain ODE has no world whose stages to time).</summary>
+    public Option<bool>? Profile { get; }
+
     public IEnumerable<Option> All =>
-        Substeps is null
+        Substeps is null || Profile is null
             ? new Option[] { Integrator, Dt, Duration, Every, Format, Plot, Animate, Tolerance }
-            : new Option[] { Integrator, Dt, Duration, Every, Format, Plot, Animate, Tolerance, Substeps };
+            : new Option[] { Integrator, Dt, Duration, Every, Format, Plot, Animate, Tolerance, Substeps, Profile };
+
+    /// <summary><c>--profile</c>: time each step's stages and print them after the run.</summary>
+    public static Option<bool> ProfileOption() => new("--profile")
+    {
+        Description = "Time each step's stages (integration, forces, constraints, contacts) and print them after the run, on standard error; a replay shows them per frame",
+    };
 
     /// <summary><c>--substeps N</c>: xpbd's substeps per step, a whole number from 1 to 1000 (default 10).</summary>
     public static Option<int?> SubstepsOption() =>
@@ -58,6 +68,9 @@ internal sealed class CommonOptions
     /// <summary>The parsed <c>--substeps</c>, or the default.</summary>
     public int SubstepsValue(ParseResult parse) =>
         Substeps is null ? Xpbd.DefaultSubsteps : parse.GetValue(Substeps) ?? Xpbd.DefaultSubsteps;
+
+    /// <summary>The parsed <c>--profile</c> (false where the option does not exist).</summary>
+    public bool ProfileValue(ParseResult parse) => Profile is not null && parse.GetValue(Profile);
 
     /// <summary><c>--plot FILE.svg</c>.</summary>
     public static Option<string?> PlotOption(string description) => new("--plot") { Description = description, HelpName = "FILE.svg" };

@@ -3,8 +3,11 @@ using ParticlePhysics.Integrators;
 
 namespace ParticlePhysics.Demo.Running;
 
-/// <summary>How a run is stepped: the integrator, the step, how many steps, which of them make rows (and xpbd's substeps).</summary>
-internal sealed record RunPlan(string Integrator, double Dt, int Steps, int Every, double Tolerance, int Substeps = Xpbd.DefaultSubsteps)
+/// <summary>
+/// How a run is stepped: the integrator, the step, how many steps, which of them make rows (and xpbd's substeps), and
+/// whether each step's stages are timed (<c>--profile</c>).
+/// </summary>
+internal sealed record RunPlan(string Integrator, double Dt, int Steps, int Every, double Tolerance, int Substeps = Xpbd.DefaultSubsteps, bool Profile = false)
 {
     /// <summary>The number of rows the default <c>--every</c> aims at.</summary>
     public const int TargetRows = 200;

@@ -19,16 +19,23 @@ internal static class Runner
     /// <param name="progress">Told about each step, or null.</param>
     /// <param name="observers">Observers that pick their own steps (a plot's snapshots, an animation's frames), or null.</param>
     /// <param name="cancellation">Stops the run between two steps (Ctrl-C): the outcome is then marked interrupted.</param>
+    /// <param name="timings">Adds up each step's stage timings (the world profiles its steps), or null.</param>
     public static RunOutcome Run(
         ScenarioSetup setup,
         RunPlan plan,
         Action<double[]>? onRow,
         ProgressReporter? progress = null,
         IReadOnlyList<IRunObserver>? observers = null,
-        CancellationToken cancellation = default)
+        CancellationToken cancellation = default,
+        StageTimings? timings = null)
     {
         observers ??= Array.Empty<IRunObserver>();
         var simulation = setup.TakeSimulation();
+        if (timings is not null)
+        {
+            StageTimings.Start(simulation);
+        }
+
         var integrator = IntegratorCatalog.Create(plan.Integrator, plan.Tolerance, plan.Substeps);
         var row = new double[setup.Columns.Count];
         var wanted = new bool[observers.Count];
@@ -106,6 +113,7 @@ internal static class Runner
                     row, good, good * plan.Dt, setup.ErrorAt(simulation, good * plan.Dt), new Divergence(step, step * plan.Dt, exception)));
             }
 
+            timings?.AfterStep(simulation);
             Emit(step);
 
             progress?.Report(step, plan.Steps);

@@ -43,8 +43,9 @@ internal static class RunAction
         }
 
         setup.Prepare();
+        var timings = plan.Profile ? new StageTimings() : null;
         var plot = plotPath is null ? null : RunPlots.For(setup, plan);
-        var recorder = animatePath is null ? null : new ReplayRecorder(setup, particles!.ParticleCount, plan);
+        var recorder = animatePath is null ? null : new ReplayRecorder(setup, particles!.ParticleCount, plan, timings);
         var observers = new List<IRunObserver>();
         if (plot is not null)
         {
@@ -82,8 +83,13 @@ internal static class RunAction
             });
         }
 
-        var outcome = Runner.Run(setup, plan, WriteRow, progress, observers, context.Cancellation);
+        var outcome = Runner.Run(setup, plan, WriteRow, progress, observers, context.Cancellation, timings);
         writer.End(outcome);
+        if (timings is not null)
+        {
+            ProfileReport.Write(context.Error, timings);
+        }
+
         if (plot is not null)
         {
             OutputFile.Write("--plot", plotPath!, plot.ToSvg(outcome));

@@ -39,7 +39,8 @@ internal static class ScenarioCommand
             steps,
             parse.GetValue(options.Every) ?? RunPlan.DefaultEvery(steps),
             parse.GetValue(options.Tolerance),
-            options.SubstepsValue(parse));
+            options.SubstepsValue(parse),
+            options.ProfileValue(parse));
         return RunAction.Execute(setup, plan, parse.GetValue(options.Format)!, parse.GetValue(options.Plot), parse.GetValue(options.Animate), context);
     }
 }

@@ -48,10 +48,11 @@ internal static class SceneCommand
         };
         var tolerance = Options.OptionalNumber("--tolerance", "rk45's error bound per internal step [default: the file's, else 1e-8]", string.Empty, NumberRule.Tolerance);
         var substeps = Options.Count("--substeps", "xpbd's substeps per step [default: the file's, else 10]", 1, null, Xpbd.MaxSubsteps);
+        var profile = CommonOptions.ProfileOption();
 
         var command = new Command(Name, "Run a scene file: particles, springs, rods, cables, loads and colliders described in JSON (docs/scenes.md); --validate only checks it.");
         command.Add(file);
-        foreach (var option in new Option[] { validate, integrator, dt, duration, every, format, plot, animate, tolerance, substeps })
+        foreach (var option in new Option[] { validate, integrator, dt, duration, every, format, plot, animate, tolerance, substeps, profile })
         {
             command.Add(option);
         }
@@ -83,7 +84,8 @@ internal static class SceneCommand
                 steps,
                 parse.GetValue(every) ?? RunPlan.DefaultEvery(steps),
                 parse.GetValue(tolerance) ?? settings.Tolerance,
-                parse.GetValue(substeps) ?? settings.Substeps);
+                parse.GetValue(substeps) ?? settings.Substeps,
+                parse.GetValue(profile));
             var setup = new SceneSetup(path, scene);
             return RunAction.Execute(setup, plan, parse.GetValue(format)!, parse.GetValue(plot), parse.GetValue(animate), context);
         });

@@ -3,6 +3,7 @@ using System.Collections.Generic;
 using System.Globalization;
 using System.IO;
 using System.Text;
+using ParticlePhysics.Scenes.Text;
 
 namespace ParticlePhysics.Scenes.Json;
 
@@ -15,7 +16,9 @@ namespace ParticlePhysics.Scenes.Json;
 /// </summary>
 /// <remarks>
 /// Written by hand because netstandard2.1 has no System.Text.Json in the box (the package adds four assemblies that
-/// Unity projects often already hold in other versions) and its reader reports byte offsets, not columns.
+/// Unity projects often already hold in other versions) and its reader reports byte offsets, not columns. One concept
+/// in one file of some 600 lines: the grammar and the reading of its tokens share one character stream, its position,
+/// line and column, and every error names all three.
 /// </remarks>
 internal sealed class JsonParser
 {
@@ -438,8 +441,7 @@ internal sealed class JsonParser
         }
 
         var text = _text.ToString();
-        var value = double.Parse(text, NumberStyles.Float, CultureInfo.InvariantCulture);
-        if (double.IsInfinity(value))
+        if (!DecimalParser.TryParse(text.AsSpan(), out var value))
         {
             throw Fail(line, column, text, "a number beyond the range of a double (about 1.8e308)");
         }

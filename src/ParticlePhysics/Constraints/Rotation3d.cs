@@ -16,7 +16,7 @@ public readonly struct Rotation3d : IEquatable<Rotation3d>
         if (!(norm >= 1e-150) || double.IsInfinity(norm))
         {
             // Finite components whose squares overflow or underflow (1e200, 1e-200) are a rotation too: scale by the
-            // largest first. A norm of ordinary size is divided by directly, bit for bit as before.
+            // largest first. A norm of ordinary size is divided by directly (one rounding fewer).
             var scale = Math.Max(Math.Max(Math.Abs(x), Math.Abs(y)), Math.Max(Math.Abs(z), Math.Abs(w)));
             if (!(scale > 0.0) || double.IsInfinity(scale) || double.IsNaN(x + y + z + w))
             {

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Internal;
 
 namespace ParticlePhysics.Forces;
 
@@ -24,7 +25,7 @@ public sealed class Dampers : IForceGenerator, IBoundForce, IJacobianCouplings, 
     /// <summary>The number of dampers.</summary>
     public int Count => _pairs.Count;
 
-    ParticleWorld? IBoundForce.System => _system;
+    object? IBoundForce.World => _system;
 
     /// <summary>Adds a damper between two different existing particles.</summary>
     /// <param name="first">One end (i).</param>

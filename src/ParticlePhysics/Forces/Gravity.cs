@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Internal;
 using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Forces;

@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using ParticlePhysics.Internal;
 using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Forces;
@@ -60,7 +61,7 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian, I
     /// <summary>The particles dragged, or null when the drag acts on every particle.</summary>
     public IReadOnlyList<int>? Particles => _particles;
 
-    ParticleWorld? IBoundForce.System => _system;
+    object? IBoundForce.World => _system;
 
     /// <inheritdoc />
     public void AddForces(in ParticleState state, Span<double> forces)

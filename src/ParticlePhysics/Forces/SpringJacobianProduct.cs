@@ -25,9 +25,8 @@ namespace ParticlePhysics.Forces;
 /// particle): that end's w is loaded once and its sum kept in registers until the run ends, instead of each addition
 /// waiting for the store of the one before. The same additions in the same order (no spring of a run has the run's
 /// particle as its second end, and a run cut at a segment's end stores and reloads its sum exactly). On a runner it
-/// writes no per-spring slots to gather afterwards, so a product is one pass and one hand-off (docs/benchmarks.md,
-/// issue 13). The segments are built when the springs, the particles or the number of parts change, never per
-/// product.
+/// writes no per-spring slots to gather afterwards, so a product is one pass and one hand-off. The segments are built
+/// when the springs, the particles or the number of parts change, never per product.
 /// </para>
 /// </remarks>
 internal sealed unsafe class SpringJacobianProduct : IParallelWork

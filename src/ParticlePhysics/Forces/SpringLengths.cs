@@ -11,13 +11,13 @@ namespace ParticlePhysics.Forces;
 /// where the runtime accelerates System.Numerics.Vector (CoreCLR), takes them several springs at a time. The
 /// linearisation runs over blocks of <see cref="Block"/> springs: this first, then its own arithmetic with l and
 /// 1 / l read back (the same operations, so the same bits). The force loop alone, a third as long, overlaps enough
-/// by itself and is not split (docs/benchmarks.md, issue 13).
+/// by itself and is not split.
 /// </summary>
 internal static unsafe class SpringLengths
 {
     /// <summary>
-    /// The springs per block: enough for the processor to overlap their square roots and divisions; blocks of 16 to
-    /// 128 springs run alike (the split itself: docs/benchmarks.md, issue 13).
+    /// The springs per block: enough for the processor to overlap their square roots and divisions; the size matters
+    /// little beyond that.
     /// </summary>
     public const int Block = 64;
 

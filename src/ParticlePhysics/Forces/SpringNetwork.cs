@@ -1,5 +1,6 @@
 using System;
 using System.Runtime.InteropServices;
+using ParticlePhysics.Internal;
 using ParticlePhysics.Numerics;
 using ParticlePhysics.Parallel;
 
@@ -65,7 +66,7 @@ public sealed partial class SpringNetwork : IForceGenerator, IPotentialEnergy, I
     /// <summary>The number of springs between a particle and a fixed anchor.</summary>
     public int AnchoredCount => _anchored.Count;
 
-    ParticleWorld? IBoundForce.System => _system;
+    object? IBoundForce.World => _system;
 
     /// <inheritdoc />
     public int TopologyVersion => _topologyVersion;

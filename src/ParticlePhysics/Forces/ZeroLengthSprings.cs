@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Internal;
 using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Forces;
@@ -33,7 +34,7 @@ public sealed class ZeroLengthSprings : IForceGenerator, IPotentialEnergy, IBoun
     /// <summary>The number of springs between a particle and a fixed anchor.</summary>
     public int AnchoredCount => _anchored.Count;
 
-    ParticleWorld? IBoundForce.System => _system;
+    object? IBoundForce.World => _system;
 
     /// <inheritdoc />
     public int TopologyVersion => _topologyVersion;

@@ -1,6 +1,7 @@
 using System;
 using System.Runtime.CompilerServices;
 using ParticlePhysics.Integrators.Multigrid;
+using ParticlePhysics.Internal;
 using ParticlePhysics.Numerics;
 using ParticlePhysics.Parallel;
 

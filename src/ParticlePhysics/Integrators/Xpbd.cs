@@ -79,8 +79,8 @@ public sealed class Xpbd : IPositionBasedIntegrator
 
     /// <summary>
     /// The number of substeps each step is split into, one projection pass each: a whole number from 1 to 1000
-    /// (default 10). More substeps make long chains of stiff constraints converge, at the cost of one pass each: on the
-    /// hanging chain at 1 ms steps, 10 substeps hold 11 rods within 9e-6 of their length and 101 rods within 7e-4.
+    /// (default 10). More substeps make long chains of stiff constraints converge (a chain's error grows with its
+    /// length and falls with the substeps), at the cost of one pass each.
     /// </summary>
     public int Substeps
     {

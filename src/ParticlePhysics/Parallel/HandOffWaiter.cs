@@ -46,8 +46,8 @@ internal sealed class HandOffWaiter
     private const int ScoreLimit = 16;
     private const int SpinThreshold = 8;
 
-    // Condition tests between two reads of the clock, and pauses between two tests (Thread.SpinWait(2) takes about
-    // 70 ns on the benchmarks' machine): the condition is seen within about 100 ns, the clock read every 0.5 us.
+    // Condition tests between two reads of the clock, and pauses between two tests: the condition is seen within a
+    // pause or two, and the clock, dearer than a test, is read once every eight.
     private const int TestsPerClockRead = 8;
     private const int PausesPerTest = 2;
 
@@ -67,7 +67,7 @@ internal sealed class HandOffWaiter
         _spinLimitTicks = spinLimitTicks;
         _adaptive = adaptive;
         // A spinner yields its core about four times per spin (at least every 10 us), so that a partner waiting for
-        // that core gets it; a yield costs about 0.7 us here even when no other thread wants the core.
+        // that core gets it; no more often, since a yield is dear even when no other thread wants the core.
         _yieldTicks = System.Math.Min(spinLimitTicks / 4, Stopwatch.Frequency / 100_000) + 1;
     }
 

@@ -70,9 +70,8 @@ public sealed class WorkerThreadRunner : IParallelRunner, IDisposable
 {
     /// <summary>
     /// The spin limit of <see cref="WorkerThreadRunner(int)"/>: 200 microseconds, longer than the serial work between
-    /// the engine's passes (40 to 60 us per xpbd substep of a 64 x 64 cloth), so that a worker is still awake for the
-    /// next pass, and a few times what waking a sleeping thread costs on a virtual machine (docs/architecture.md,
-    /// Parallelism).
+    /// the engine's passes on a large cloth, so that a worker is still awake for the next pass, and a few times what
+    /// waking a sleeping thread costs on a virtual machine (docs/architecture.md, Parallelism).
     /// </summary>
     public static readonly TimeSpan DefaultSpinLimit = TimeSpan.FromTicks(2000);
 

@@ -75,14 +75,35 @@ public sealed class TwoMassChainScenario : IExactSolution
         var system = new ParticleWorld(2);
         var first = system.AddParticle(new Vector3d(0, Y1, 0), _m1);
         var second = system.AddParticle(new Vector3d(0, Y2, 0), _m2);
+        // A spring of rest length 0 is the contract's linear spring -k (x_i - x_j) (the course's L2 = 0), not the
+        // rest-length formula at L = 0, which divides by the length and has no direction where the ends meet.
         var springs = new SpringNetwork(system);
-        springs.AddAnchored(first, Vector3d.Zero, _k1, _restLength1);
-        springs.Add(first, second, _k2, _restLength2);
+        var linear = new ZeroLengthSprings(system);
+        if (_restLength1 == 0.0)
+        {
+            linear.AddAnchored(first, Vector3d.Zero, _k1);
+        }
+        else
+        {
+            springs.AddAnchored(first, Vector3d.Zero, _k1, _restLength1);
+        }
+
+        if (_restLength2 == 0.0)
+        {
+            linear.Add(first, second, _k2);
+        }
+        else
+        {
+            springs.Add(first, second, _k2, _restLength2);
+        }
+
         system.AddForce(springs);
+        system.AddForce(linear);
         system.AddForce(new LinearDrag(_c1, system, new[] { first }));
         system.AddForce(new LinearDrag(_c2, system, new[] { second }));
         system.AddForce(Forces.Gravity.Down(_gravity));
         system.AddConstraints(new SpringProjection(springs)); // how xpbd steps the springs
+        system.AddConstraints(new SpringProjection(linear));
         return system;
     }
 

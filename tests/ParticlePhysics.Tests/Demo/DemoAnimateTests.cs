@@ -226,6 +226,32 @@ public sealed partial class DemoAnimateTests : IDisposable
     }
 
     [Fact]
+    public void A_profiled_run_keeps_each_stages_time_per_step_at_every_frame_and_an_unprofiled_one_none()
+    {
+        var path = Path.Combine(_folder, "profiled.html");
+        var plainPath = Path.Combine(_folder, "plain.html");
+
+        var result = DemoProcess.Run("cloth", "--duration", "0.1", "--format", "csv", "--profile", "--animate", path);
+        Assert.Equal(0, DemoProcess.Run("cloth", "--duration", "0.1", "--format", "csv", "--animate", plainPath).ExitCode);
+
+        Assert.Equal(0, result.ExitCode);
+        var data = Page.Read(path).Data;
+        var profile = data.GetProperty("profile");
+        Assert.Equal(ReplayRecorder.StageNames, profile.GetProperty("stages").EnumerateArray().Select(e => e.GetString()));
+        var seconds = profile.GetProperty("seconds").EnumerateArray().Select(e => e.GetDouble()).ToArray();
+        var frames = data.GetProperty("times").GetArrayLength();
+        Assert.Equal(4 * frames, seconds.Length);
+        Assert.All(seconds, s => Assert.True(s >= 0.0));
+        Assert.Equal(0.0, seconds.Take(4).Sum()); // no step before the first frame
+        for (var f = 1; f < frames; f++)
+        {
+            Assert.True(seconds.Skip(4 * f).Take(4).Sum() > 0.0, $"frame {f}'s steps were timed");
+        }
+
+        Assert.False(Page.Read(plainPath).Data.TryGetProperty("profile", out _));
+    }
+
+    [Fact]
     public void The_page_template_is_the_html_file_in_the_demo()
     {
         var file = Path.Combine(ReadmeExamplesTests.RepositoryRoot(), "samples", "ParticlePhysics.Demo", "Animation", "replay.html");

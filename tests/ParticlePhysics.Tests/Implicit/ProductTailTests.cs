@@ -3,6 +3,7 @@ using System.Linq;
 using ParticlePhysics.Cloth;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Integrators;
+using ParticlePhysics.Internal;
 using ParticlePhysics.Parallel;
 using ParticlePhysics.Tests.Support;
 

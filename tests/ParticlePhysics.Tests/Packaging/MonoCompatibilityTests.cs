@@ -7,14 +7,16 @@ namespace ParticlePhysics.Tests.Packaging;
 /// Unity's Mono declares ReadOnlySpan&lt;T&gt;'s indexer and GetPinnableReference as returning <c>ref T</c>, while the
 /// netstandard2.1 reference assembly says <c>ref readonly T</c>, which the compiler encodes as a modreq(InAttribute)
 /// on the return type. A call site with that modreq does not bind on Mono (MissingMethodException at the first
-/// step), so the core must reference no member of another assembly whose return carries it.
+/// step), so the core and the scene loader (both shipped to Unity) must reference no member of another assembly whose return carries it.
 /// </summary>
 public class MonoCompatibilityTests
 {
-    [Fact]
-    public void The_core_calls_no_ref_readonly_returning_member_of_another_assembly()
+    [Theory]
+    [InlineData("the core")]
+    [InlineData("the scene loader")]
+    public void The_product_calls_no_ref_readonly_returning_member_of_another_assembly(string assembly)
     {
-        using var metadata = new CoreMetadata();
+        using var metadata = new CoreMetadata(assembly == "the core" ? typeof(ParticleWorld).Assembly : typeof(ParticlePhysics.Scenes.Scene).Assembly);
         var offending = metadata.ExternalMemberReferences()
             .Where(m => m.Returns.Contains("modreq(System.Runtime.InteropServices.InAttribute)"))
             .Select(m => $"{m.Member}: {m.Signature}, called by {string.Join(", ", metadata.MethodsUsing(m.Handle))}")

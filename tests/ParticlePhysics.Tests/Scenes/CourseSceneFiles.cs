@@ -53,20 +53,15 @@ internal static class CourseSceneFiles
             + "    { \"type\": \"springs\", \"pairs\": [[0, 1]], \"stiffness\": 1, \"restLength\": 0 }");
     }
 
-    /// <summary>The options the two-mass chain's scene is written for (the scenario command with them gives its rows).</summary>
-    public static readonly string[] TwoMassChainOptions = { "--rest-length2", "0.5" };
-
     private static string TwoMassChain()
     {
-        var world = new TwoMassChainScenario { RestLength2 = 0.5 }.Build();
+        var world = new TwoMassChainScenario().Build();
         return Scene(
-            "Anchor - spring 1 - mass 0 - spring 2 - mass 1 (two-mass-chain --rest-length2 0.5): k = 10 N/m, rest lengths 1 and 0.5, drag 0.5.",
-            "The anchor is particle 2, pinned. The course's chain has rest length 0 on spring 2: write \"restLength\": 0 there for the\n"
-            + "// contract's zero-rest-length spring -k (x0 - x1); the scenario command computes that spring with the rest-length\n"
-            + "// formula at L = 0, the same force to rounding, so its rows then differ from the scene's in their last digits.",
+            "Anchor - spring 1 - mass 0 - spring 2 - mass 1 (two-mass-chain): k = 10 N/m, rest lengths 1 and 0, drag 0.5.",
+            "The anchor is particle 2, pinned; restLength 0 on spring 2 is the course's linear spring -k (x0 - x1).",
             "rk4", 0.01, 20, drag: 0.5, gravity: null,
             Particles(world, Enumerable.Range(0, 2), pinned: Array.Empty<int>()) + ",\n" + Anchor(Vector3d.Zero) + ",\n"
-            + "    { \"type\": \"springs\", \"pairs\": [[0, 1]], \"stiffness\": 10, \"restLength\": 0.5 },\n"
+            + "    { \"type\": \"springs\", \"pairs\": [[0, 1]], \"stiffness\": 10, \"restLength\": 0 },\n"
             + "    { \"type\": \"springs\", \"pairs\": [[0, 2]], \"stiffness\": 10, \"restLength\": 1 }");
     }
 

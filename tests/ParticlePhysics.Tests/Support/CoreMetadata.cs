@@ -26,8 +26,14 @@ internal sealed class CoreMetadata : IDisposable
     private readonly PEReader _pe;
 
     public CoreMetadata()
+        : this(typeof(ParticleWorld).Assembly)
     {
-        _stream = File.OpenRead(typeof(ParticleWorld).Assembly.Location);
+    }
+
+    /// <summary>Reads another of the product's assemblies (the scene loader).</summary>
+    public CoreMetadata(Assembly assembly)
+    {
+        _stream = File.OpenRead(assembly.Location);
         _pe = new PEReader(_stream);
         Reader = _pe.GetMetadataReader();
     }

@@ -1,4 +1,4 @@
-namespace ParticlePhysics;
+namespace ParticlePhysics.Internal;
 
 /// <summary>
 /// A linearised force whose Jacobian product is the same multiple of w on every coordinate, result += c w (a drag on

@@ -1,6 +1,6 @@
 using System;
 
-namespace ParticlePhysics;
+namespace ParticlePhysics.Internal;
 
 /// <summary>
 /// A linearisable system whose Jacobian product ends with a uniform term, result[k] += c w[k] on every coordinate
@@ -9,8 +9,8 @@ namespace ParticlePhysics;
 /// order, so the same bits.
 /// </summary>
 /// <remarks>
-/// Measured on the 64 x 64 cloth under implicit Euler: the drag's pass was 0.85 % of a one-core frame, and on a runner it
-/// ran on the calling thread alone while the other threads waited, 7.8 times a frame (docs/benchmarks.md, issue 13).
+/// Why: the term's own pass would run on the calling thread alone, once per product, while a runner's other threads
+/// wait.
 /// </remarks>
 internal interface IJacobianProductTail
 {

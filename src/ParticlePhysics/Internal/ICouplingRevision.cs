@@ -1,10 +1,9 @@
-namespace ParticlePhysics;
+namespace ParticlePhysics.Internal;
 
 /// <summary>
 /// A linearisable system that can tell, without writing its couplings out, that they have not changed: the implicit
-/// stepper's multigrid otherwise compares them pair by pair at every step to know whether to rebuild its aggregates
-/// (two arrays of one int per coupling written and compared: 17 us per 60 Hz frame of the 64 x 64 cloth, on the
-/// calling thread).
+/// stepper's multigrid otherwise compares them pair by pair at every step to know whether to rebuild its aggregates,
+/// two arrays of one int per coupling written and compared on the calling thread while the other threads wait.
 /// </summary>
 internal interface ICouplingRevision
 {
