@@ -49,7 +49,7 @@ internal sealed class BoxTree
     public int[] Items { get; private set; } = Array.Empty<int>();
 
     /// <summary>Builds the tree over <paramref name="count"/> boxes, box i being [min[3i..3i+2], max[3i..3i+2]].</summary>
-    public void Build(ReadOnlySpan<double> min, ReadOnlySpan<double> max, int count)
+    public void Build(Span<double> min, Span<double> max, int count)
     {
         if (Items.Length < count)
         {
@@ -147,7 +147,7 @@ internal sealed class BoxTree
     }
 
     /// <summary>Node <paramref name="node"/> over Items[start, end): its box, then a leaf or a split at the median.</summary>
-    private void Split(int node, int start, int end, ReadOnlySpan<double> min, ReadOnlySpan<double> max)
+    private void Split(int node, int start, int end, Span<double> min, Span<double> max)
     {
         double lx = double.PositiveInfinity, ly = double.PositiveInfinity, lz = double.PositiveInfinity;
         double hx = double.NegativeInfinity, hy = double.NegativeInfinity, hz = double.NegativeInfinity;

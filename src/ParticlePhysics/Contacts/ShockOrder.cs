@@ -30,8 +30,8 @@ internal sealed class ShockOrder
     /// unranked pairs last, in their own order).
     /// </summary>
     public void Order(
-        int n, Span<int> first, Span<int> second, ReadOnlySpan<double> inverseMasses, ObstacleContactList near,
-        ReadOnlySpan<double> x, ReadOnlySpan<double> radii, double touchingMargin, int largestPairs)
+        int n, Span<int> first, Span<int> second, Span<double> inverseMasses, ObstacleContactList near,
+        Span<double> x, Span<double> radii, double touchingMargin, int largestPairs)
     {
         var pairs = first.Length;
         if (_rank.Length < n)
@@ -121,7 +121,7 @@ internal sealed class ShockOrder
 
     private int LowerRank(int a, int b) => Math.Min(_rank[a], _rank[b]);
 
-    private static bool Touching(ReadOnlySpan<double> x, int i, int j, ReadOnlySpan<double> radii, double margin)
+    private static bool Touching(Span<double> x, int i, int j, Span<double> radii, double margin)
     {
         var dx = x[3 * i] - x[3 * j];
         var dy = x[(3 * i) + 1] - x[(3 * j) + 1];
