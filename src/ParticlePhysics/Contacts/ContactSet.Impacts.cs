@@ -252,6 +252,7 @@ public sealed partial class ContactSet
         }
 
         Kick(in context, i, s, dv, bounce: !resting);
+        React(in context, i, k, dv, p, normal, context.Time + s);
         if (resting)
         {
             _resting.Rest(i, k, s, tangent, q);

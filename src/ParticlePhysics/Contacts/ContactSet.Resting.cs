@@ -39,6 +39,7 @@ public sealed partial class ContactSet
             var gap = obstacle.Distance(q.X, q.Y, q.Z, out var nx, out var ny, out var nz) - Radius(radii, i);
             var normal = new Vector3d(nx, ny, nz);
             var velocity = Read(v, i);
+            var before = velocity;
             var relative = velocity - obstacle.Velocity;
             var un = Vector3d.Dot(relative, normal);
             if (!(gap < 0.0) && !(gap <= ContactSearch.Tolerance && un < 0.0))
@@ -75,6 +76,7 @@ public sealed partial class ContactSet
 
             Write(x, i, position);
             Write(v, i, velocity);
+            React(in context, i, k, velocity - before, position, normal, end);
         }
     }
 }

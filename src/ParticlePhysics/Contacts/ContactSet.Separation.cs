@@ -240,6 +240,7 @@ public sealed partial class ContactSet
             v[o] += dx;
             v[o + 1] += dy;
             v[o + 2] += dz;
+            React(in context, i, k, new Vector3d(dx, dy, dz), new Vector3d(x[o], x[o + 1], x[o + 2]), new Vector3d(nx, ny, nz), time);
         }
 
         return -gap;

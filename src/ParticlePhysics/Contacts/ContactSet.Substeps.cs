@@ -53,6 +53,11 @@ public sealed partial class ContactSet
         var h = context.Dt;
         var end = context.Time + h;
         _substep.End = end;
+        if (!_bracketed)
+        {
+            _reactions.Clear(_obstacles.Count);
+        }
+
         _colliders.Update(_obstacles, context.Time, end);
         if (ParticleCollisions)
         {
@@ -131,6 +136,8 @@ public sealed partial class ContactSet
                     position -= tangential;
                 }
 
+                // The velocity the integrator takes from the positions changes by this push over h: an impulse m dx / h.
+                React(in context, i, k, (position - Read(x, i)) / h, position, normal, end);
                 Write(x, i, position);
                 AddSubstepContact(k, i, -1, normal, depth, Vector3d.Dot(Read(v, i) - obstacle.Velocity, normal));
                 candidates = ObstaclesNear(i, Read(previous, i), position, TouchReach(radius), k);
@@ -190,6 +197,11 @@ public sealed partial class ContactSet
             var rebound = approach < 0.0 && e * -approach > _restingSpeed ? -e * approach : 0.0;
             change += (rebound - vn) * normal;
             Write(v, a, Read(v, a) + ((wa / w) * change));
+            if (k >= 0)
+            {
+                React(in context, a, k, change, Read(context.Positions, a), normal, context.Time + h);
+            }
+
             if (k < 0)
             {
                 var b = _substep.Second(c);

@@ -69,6 +69,8 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     private readonly SubstepContacts _substep = new();
     private readonly ContactLog _log = new(MaxRecordedImpacts);
     private readonly ObstacleBroadPhase _colliders = new();
+    private readonly ColliderReactions _reactions = new();
+    private bool _bracketed;
     private readonly LayeredPairFilter _layered = new();
     private int[] _candidates = Array.Empty<int>();
     private CollisionFilter[] _particleFilters = Array.Empty<CollisionFilter>();
@@ -176,17 +178,47 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     public int CandidatePairCount => _log.CandidatePairs;
 
     /// <inheritdoc />
-    /// <remarks>Keeps the impact log aside (a copy of the impacts it holds, allocated once).</remarks>
-    public void BeginStep() => _log.Save();
-
-    /// <inheritdoc />
-    public void CommitStep()
+    /// <remarks>Keeps the impact log and the reactions aside (copies allocated once), and starts the reactions from zero.</remarks>
+    public void BeginStep()
     {
+        _log.Save();
+        _reactions.Save();
+        _reactions.Clear(_obstacles.Count);
+        _bracketed = true;
     }
 
     /// <inheritdoc />
-    /// <remarks>The impact log, its count and the candidate pairs' count are those of the last committed step again.</remarks>
-    public void DiscardStep() => _log.Restore();
+    public void CommitStep() => _bracketed = false;
+
+    /// <inheritdoc />
+    /// <remarks>The impact log, its count, the candidate pairs' count and the reactions are those of the last committed step again.</remarks>
+    public void DiscardStep()
+    {
+        _log.Restore();
+        _reactions.Restore();
+        _bracketed = false;
+    }
+
+    /// <summary>
+    /// What obstacle <paramref name="obstacle"/> received from the particles over the last step (over a
+    /// <see cref="Driver.FixedTimestepDriver"/>'s frame, its steps together): the total impulse and the angular impulse
+    /// about its <see cref="Obstacle.ReactionPoint"/>, from every impact, resting contact, friction and separation
+    /// (under the position-based integrator, m dx / h of each projection and m dv of each velocity pass), so that
+    /// a host that moves the obstacle as a body by them conserves the momentum of the two together. Zero for an
+    /// obstacle added since. Allocates nothing.
+    /// </summary>
+    /// <exception cref="ArgumentException">The obstacle is not in the set.</exception>
+    public ColliderReaction ReactionOf(Obstacle obstacle)
+    {
+        Guard.NotNull(obstacle, nameof(obstacle));
+        var k = _obstacles.IndexOf(obstacle);
+        if (k < 0)
+        {
+            throw new ArgumentException("This obstacle is not in the contact set.", nameof(obstacle));
+        }
+
+        return _reactions.Of(k);
+    }
 
     /// <summary>Adds an obstacle; it acts from the next step on.</summary>
     /// <remarks>Any number: a broad phase over the obstacles' boxes (<see cref="Obstacle.TryGetBounds"/>) tests each particle only against those near it.</remarks>
@@ -200,10 +232,17 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         }
 
         _obstacles.Add(obstacle);
+        _reactions.Clear(_obstacles.Count);
     }
 
     /// <summary>Removes an obstacle; returns false when it was not in the set. The indices of those after it shift down.</summary>
-    public bool Remove(Obstacle obstacle) => _obstacles.Remove(obstacle);
+    /// <remarks>The reactions of the last step start again from zero, since the indices moved.</remarks>
+    public bool Remove(Obstacle obstacle)
+    {
+        var removed = _obstacles.Remove(obstacle);
+        _reactions.Clear(_obstacles.Count);
+        return removed;
+    }
 
     /// <summary>
     /// Puts the particles <paramref name="first"/> to <paramref name="first"/> + <paramref name="count"/> - 1 (a cloth,
@@ -254,6 +293,11 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         EnsureCapacity(n);
         _log.Clear();
         _pairs.Clear();
+        if (!_bracketed)
+        {
+            _reactions.Clear(_obstacles.Count); // called outside a world's step: this call's reactions alone
+        }
+
         _colliders.Update(_obstacles, context.Time, context.Time + context.Dt);
         SetPaths(in context);
         _resting.Clear(n);
@@ -318,6 +362,22 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         values[3 * i] = value.X;
         values[(3 * i) + 1] = value.Y;
         values[(3 * i) + 2] = value.Z;
+    }
+
+    /// <summary>
+    /// Books on obstacle k the reaction to particle i's velocity change <paramref name="dv"/> at time
+    /// <paramref name="time"/>: the impulse -m dv at the contact point, the centre less the radius along the normal.
+    /// </summary>
+    private void React(in ConstraintContext context, int i, int k, Vector3d dv, Vector3d centre, Vector3d normal, double time)
+    {
+        if (dv == Vector3d.Zero)
+        {
+            return;
+        }
+
+        var obstacle = _obstacles[k];
+        var point = centre - (Radius(context.Radii.ForReading(), i) * normal);
+        _reactions.Add(k, -context.Masses.ForReading()[i] * dv, point, obstacle.ReactionPoint + obstacle.OffsetAt(time));
     }
 
     private static void CheckRestitution(double value, string name)

@@ -39,6 +39,7 @@ public abstract class Obstacle
     private double _friction;
     private Vector3d _velocity;
     private double _referenceTime;
+    private Vector3d _reactionPoint;
 
     /// <summary>Sets the contact coefficients.</summary>
     /// <param name="restitution">e, from 0 (no bounce) to 1 (elastic).</param>
@@ -96,6 +97,21 @@ public abstract class Obstacle
     /// </summary>
     public CollisionFilter Filter { get; set; }
 
+    /// <summary>
+    /// The point about which <see cref="ContactSet.ReactionOf"/> gives the angular impulse the particles exert, in
+    /// metres where the parameters put the obstacle (the origin by default): a host body's centre of mass. It moves
+    /// with the obstacle, as its parameters do.
+    /// </summary>
+    public Vector3d ReactionPoint
+    {
+        get => _reactionPoint;
+        set
+        {
+            Guard.Finite(value, nameof(ReactionPoint));
+            _reactionPoint = value;
+        }
+    }
+
     /// <summary>The time, in seconds, at which the obstacle is where its parameters say (0 by default).</summary>
     public double ReferenceTime
     {
@@ -123,6 +139,7 @@ public abstract class Obstacle
         var offset = OffsetAt(time);
         Guard.Finite(offset, nameof(time));
         Translate(offset);
+        _reactionPoint += offset;
         _referenceTime = time;
     }
 
