@@ -17,8 +17,8 @@ namespace ParticlePhysics.Contacts;
 /// <para>
 /// It is a one-sided <see cref="MeshObstacle"/> of those triangles, moved to the origin (the world's axes): impacts at
 /// their time within the step, resting, restitution and Coulomb friction as for every obstacle, the cells near a
-/// particle found through the mesh's hierarchy. Below the surface, however deep, is inside, so it has no bounds and is
-/// tested against every particle.
+/// particle found through the mesh's hierarchy. The column below the surface, however deep, is inside, and beside the
+/// grid is outside; having no bounds below, it is tested against every particle.
 /// </para>
 /// </remarks>
 public sealed class HeightFieldObstacle : Obstacle

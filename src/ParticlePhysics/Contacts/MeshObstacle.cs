@@ -13,8 +13,9 @@ namespace ParticlePhysics.Contacts;
 /// there, is outside, and the distance is signed by the angle-weighted pseudonormal of the nearest feature (face,
 /// edge or vertex), exact for a closed, consistently wound mesh: a closed mesh (<see cref="IsClosed"/>) is a solid,
 /// and what reaches its inside is pushed out through the nearest face. An open one-sided mesh (a floor, a terrain) is
-/// the surface of the solid behind it, however far behind: it has no bounds, so every particle is tested against it,
-/// and one that passes round its rim to the back is pushed out to the front. Two-sided (<see cref="TwoSided"/>): a
+/// the surface of the solid behind it, however far behind, within the surfaces through its rim perpendicular to its
+/// faces (below a terrain, the column under it): a particle beside the rim is outside. It has no bounds, so every
+/// particle is tested against it. Two-sided (<see cref="TwoSided"/>): a
 /// sheet without inside; the distance is unsigned and keeps a particle on the side it is on.
 /// </para>
 /// <para>

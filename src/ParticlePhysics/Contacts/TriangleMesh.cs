@@ -22,6 +22,8 @@ internal sealed class TriangleMesh
     private readonly Vector3d[] _faceNormals;
     private readonly Vector3d[] _edgeNormals;
     private readonly Vector3d[] _vertexNormals;
+    private readonly bool[] _rimEdges;
+    private readonly bool[] _rimVertices;
 
     /// <summary>Builds the mesh; throws, naming the value, for a count, an index, a coordinate or a triangle that is not allowed.</summary>
     public TriangleMesh(double[] vertices, int[] triangles, string verticesName, string trianglesName)
@@ -76,6 +78,8 @@ internal sealed class TriangleMesh
 
         _edgeNormals = new Vector3d[3 * Count];
         _vertexNormals = new Vector3d[vertexCount];
+        _rimEdges = new bool[3 * Count];
+        _rimVertices = new bool[vertexCount];
         IsClosed = BuildPseudonormals();
         BuildTree();
     }
@@ -115,7 +119,10 @@ internal sealed class TriangleMesh
     /// <summary>
     /// The distance from p to the mesh and its gradient (<see cref="TriangleGeometry.Distance(Vector3d, Vector3d, Vector3d, Vector3d, out Vector3d)"/>
     /// of the nearest triangle), signed by the pseudonormal of the nearest feature when <paramref name="signed"/>
-    /// (negative behind the surface); <paramref name="triangle"/> receives the nearest triangle.
+    /// (negative behind the surface); <paramref name="triangle"/> receives the nearest triangle. Where the nearest
+    /// feature is on the rim of an open mesh (an edge of one triangle, or a vertex on such an edge), the point is beside
+    /// the surface, not behind it, and the distance is unsigned: the solid behind an open mesh is bounded by the surfaces
+    /// through its rim perpendicular to its faces (below a terrain, the column under it).
     /// </summary>
     public double Distance(Vector3d p, bool signed, out Vector3d gradient, out int triangle)
     {
@@ -144,7 +151,7 @@ internal sealed class TriangleMesh
         }
 
         gradient = d / length;
-        if (signed && Vector3d.Dot(d, Pseudonormal(triangle, feature)) < 0.0)
+        if (signed && !OnRim(triangle, feature) && Vector3d.Dot(d, Pseudonormal(triangle, feature)) < 0.0)
         {
             gradient = -gradient;
             return -length;
@@ -342,6 +349,10 @@ internal sealed class TriangleMesh
 
     private Vector3d Vertex(int v) => new(_vertices[3 * v], _vertices[(3 * v) + 1], _vertices[(3 * v) + 2]);
 
+    private bool OnRim(int t, int feature) =>
+        feature >= TriangleGeometry.FirstVertex ? _rimVertices[_triangles[(3 * t) + feature - TriangleGeometry.FirstVertex]]
+        : feature >= TriangleGeometry.FirstEdge && _rimEdges[(3 * t) + feature - TriangleGeometry.FirstEdge];
+
     private Vector3d Pseudonormal(int t, int feature) =>
         feature >= TriangleGeometry.FirstVertex ? _vertexNormals[_triangles[(3 * t) + feature - TriangleGeometry.FirstVertex]]
         : feature >= TriangleGeometry.FirstEdge ? _edgeNormals[(3 * t) + feature - TriangleGeometry.FirstEdge]
@@ -379,7 +390,14 @@ internal sealed class TriangleMesh
             {
                 var key = EdgeKey(_triangles[(3 * t) + e], _triangles[(3 * t) + ((e + 1) % 3)], vertexCount, out _);
                 _edgeNormals[(3 * t) + e] = edges[key];
-                closed &= uses[key] == 1 + (1 << 16);
+                var shared = uses[key] == 1 + (1 << 16);
+                closed &= shared;
+                if (!shared)
+                {
+                    _rimEdges[(3 * t) + e] = true;
+                    _rimVertices[_triangles[(3 * t) + e]] = true;
+                    _rimVertices[_triangles[(3 * t) + ((e + 1) % 3)]] = true;
+                }
             }
         }
 

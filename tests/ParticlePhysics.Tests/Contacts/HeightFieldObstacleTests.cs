@@ -79,9 +79,14 @@ public class HeightFieldObstacleTests(ITestOutputHelper output)
     {
         var heights = new double[,] { { 0, 0.1 }, { 0.2, 0.3 } };
         var field = new HeightFieldObstacle(Vector3d.Zero, 1, 1, heights);
-        Assert.True(field.SignedDistance(new Vector3d(0.25, -5, 0.25), out var normal) < -5);
+        Assert.True(field.SignedDistance(new Vector3d(0.5, -0.5, 0.5), out var normal) < -0.5);
         Assert.True(normal.Y > 0.9);
         Assert.True(field.SignedDistance(new Vector3d(0.25, 1, 0.25), out _) > 0.5);
+
+        // Beside a flat grid, below its rim, is outside: at the distance from the rim.
+        field = new HeightFieldObstacle(Vector3d.Zero, 1, 1, new double[2, 2]);
+        Assert.Equal(Math.Sqrt(0.25 + 0.04), field.SignedDistance(new Vector3d(-0.5, -0.2, 0.5), out _), 14);
+        Assert.Equal(Math.Sqrt(0.25 + 0.09), field.SignedDistance(new Vector3d(0.5, -0.3, -0.5), out _), 14);
     }
 
     [Theory]
