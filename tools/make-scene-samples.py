@@ -81,3 +81,75 @@ dump("samples/scenes/rope-bridge.json", [
 dump("samples/scenes/ball-pit.json", [
     "A ball pit: 288 balls of radius 5 cm fall into a box of four walls on the ground, around a half-buried sphere;",
     "they collide with each other (restitution 0.3, friction 0.2). Written by tools/make-scene-samples.py."], ball_pit())
+
+
+def flag():
+    # A flag of 12 x 8 cells of 0.1 m in the plane z = 0, cut along x = 0.6 into two halves as a UV seam cuts a render
+    # mesh: the seam's vertices are written twice, and "weld" merges them. Its pole edge x = 0 is pinned.
+    cols, rows, h, seam = 12, 8, 0.1, 6
+    vertices, index = [], {}
+    for half, (c0, c1) in enumerate(((0, seam), (seam, cols))):
+        for r in range(rows + 1):
+            for c in range(c0, c1 + 1):
+                index[(half, r, c)] = len(vertices)
+                vertices.append((round(c * h, 6), round(1.5 - r * h, 6), 0.0))
+    faces = []
+    for half, (c0, c1) in enumerate(((0, seam), (seam, cols))):
+        for r in range(rows):
+            for c in range(c0, c1):
+                a, b = index[(half, r, c)], index[(half, r, c + 1)]
+                d, e = index[(half, r + 1, c)], index[(half, r + 1, c + 1)]
+                faces += [(a, d, b), (b, d, e)]
+    with open("samples/scenes/flag.obj", "w") as f:
+        f.write("# A flag of 12 x 8 cells cut into two halves along x = 0.6 (a UV seam). Written by tools/make-scene-samples.py.\n")
+        for v in vertices:
+            f.write("v %g %g %g\n" % v)
+        for t in faces:
+            f.write("f %d %d %d\n" % tuple(i + 1 for i in t))
+    pole = [index[(0, r, 0)] for r in range(rows + 1)]
+    return {
+        "integrator": {"name": "xpbd", "substeps": 20},
+        "dt": 1 / 60,
+        "duration": 4,
+        "objects": [{
+            "type": "cloth",
+            "mesh": {"obj": "flag.obj"},
+            "weld": True,
+            "density": 0.2,
+            "stretch": {"modulus": 1000, "poisson": 0.3, "damping": 0.2},
+            "bending": {"rigidity": 0.0001},
+            "pinned": pole,
+            "thickness": 0.01,
+        }],
+        "colliders": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0]}],
+    }
+
+
+def ropes():
+    # Two ropes of 1 m and 21 points: one clamped horizontally at its first two points, with bending rigidity EI, sags
+    # mu g L^4 / (8 EI) = 0.049 m (mu = 0.1 kg/m, EI = 2.5 N m^2, L from midway between the pinned points); one of
+    # springs without bending hangs from both ends.
+    n = 20
+    stiff = [[round((i - 0.5) / (n - 0.5), 12), 1.0, 0.0] for i in range(n + 1)]
+    limp = [[round(-1.2 + 1.0 * i / n, 12), 1.0, 0.5] for i in range(n + 1)]
+    return {
+        "integrator": {"name": "implicit-euler"},
+        "dt": 0.02,
+        "duration": 4,
+        "drag": 0.01,
+        "objects": [
+            {"type": "rope", "points": stiff, "mass": 0.1 * n / (n - 0.5), "stretch": {"stiffness": 20000, "damping": 1},
+             "bending": {"rigidity": 2.5}, "pinned": [0, 1]},
+            {"type": "rope", "points": limp, "mass": 0.1, "stretch": {"stiffness": 2000, "damping": 0.5}, "pinned": [0, n]},
+        ],
+    }
+
+
+dump("samples/scenes/flag.json", [
+    "A flag from an OBJ mesh cut along a UV seam: welded into one cloth of membrane (Y = 1000 N/m, nu = 0.3) and",
+    "plate bending (D = 1e-4 N m), pinned along its pole and hanging from it. Written by tools/make-scene-samples.py.",
+], flag())
+dump("samples/scenes/ropes.json", [
+    "Two ropes of 1 m: one held out horizontally by its first two points, with bending rigidity EI = 2.5 N m^2, which",
+    "sags 4.9 cm, and one of springs without bending hanging from both ends. Written by tools/make-scene-samples.py.",
+], ropes())

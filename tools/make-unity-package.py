@@ -2,10 +2,11 @@
 """Lay out ParticlePhysics as a Unity package (UPM) folder around the precompiled netstandard2.1 DLL.
 
     python3 tools/make-unity-package.py                    # builds Release, writes artifacts/unity/com.particlephysics.core
-    python3 tools/make-unity-package.py --dll path/to/ParticlePhysics.dll --out DIR
+    python3 tools/make-unity-package.py --dll path/to/ParticlePhysics.dll --out DIR   # ParticlePhysics.Scenes.dll beside it
 
 The folder holds package.json, README.md (the package users' README, src/ParticlePhysics/README.md), LICENSE.md,
-CHANGELOG.md, Documentation~/unity.md, Runtime/ with the DLL and its XML docs, and Samples~/Cloth with the sample
+CHANGELOG.md, Documentation~/unity.md, Runtime/ with the two DLLs (the core, and ParticlePhysics.Scenes, which loads
+scene files and OBJ meshes) and their XML docs, and Samples~/Cloth with the sample
 MonoBehaviour (samples/unity/Cloth, listed under "samples" in package.json: Package Manager offers to import it), and a
 .meta file beside every asset and folder, as Unity requires in an immutable (git or registry) package. Each .meta's GUID is the MD5 of the package name and the asset's path, so it stays the same from run to
 run and from version to version: Unity keeps the references of scenes and prefabs to the plugin across upgrades.
@@ -27,12 +28,17 @@ DISPLAY_NAME = "ParticlePhysics"
 UNITY_VERSION = "2021.3"
 ROOT = Path(__file__).resolve().parent.parent
 PROJECT = ROOT / "src" / "ParticlePhysics" / "ParticlePhysics.csproj"
+SCENES_PROJECT = ROOT / "src" / "ParticlePhysics.Scenes" / "ParticlePhysics.Scenes.csproj"
 PACKAGE_README = ROOT / "src" / "ParticlePhysics" / "README.md"
 SAMPLES = [
     # (folder under Samples~, source folder, display name, description)
     ("Cloth", ROOT / "samples" / "unity" / "Cloth", "Simulated cloth",
      "A MonoBehaviour that hangs a cloth from two corners, steps it at 60 Hz with implicit Euler out of Update and "
      "draws it through a MeshFilter, interpolated, without allocating per frame; save and restore included."),
+    ("MeshCloth", ROOT / "samples" / "unity" / "MeshCloth", "Mesh cloth",
+     "A MonoBehaviour that turns the MeshFilter's mesh into a cloth of physical membrane and bending: welds its UV "
+     "seams, pins the vertices painted red (or listed), attaches them to a transform, and writes positions and normals "
+     "back each frame without allocating."),
 ]
 
 DESCRIPTION = (
@@ -131,7 +137,7 @@ def project_version() -> str:
 def build_dll(configuration: str) -> Path:
     output = ROOT / "artifacts" / "unity-build"
     subprocess.run(
-        ["dotnet", "build", str(PROJECT), "-c", configuration, "-o", str(output), "--nologo", "-v", "quiet"],
+        ["dotnet", "build", str(SCENES_PROJECT), "-c", configuration, "-o", str(output), "--nologo", "-v", "quiet"],
         check=True,
     )
     return output / "ParticlePhysics.dll"
@@ -145,7 +151,8 @@ def write(path: Path, text: str) -> None:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--dll", type=Path, help="a built ParticlePhysics.dll (default: build src/ParticlePhysics)")
+    parser.add_argument("--dll", type=Path, help="a built ParticlePhysics.dll, with ParticlePhysics.Scenes.dll beside it "
+                        "(default: build src/ParticlePhysics.Scenes, which builds the core)")
     parser.add_argument("--out", type=Path, default=ROOT / "artifacts" / "unity",
                         help="the folder to create the package folder in (default: artifacts/unity)")
     parser.add_argument("--version", help="the package version (default: <Version> of the csproj)")
@@ -154,7 +161,9 @@ def main() -> int:
 
     dll = args.dll.resolve() if args.dll else build_dll(args.configuration)
     xml = dll.with_suffix(".xml")
-    for required in (dll, xml):
+    scenes = dll.with_name("ParticlePhysics.Scenes.dll")
+    scenes_xml = scenes.with_suffix(".xml")
+    for required in (dll, xml, scenes, scenes_xml):
         if not required.is_file():
             sys.exit(f"error: {required} does not exist (build the core first, or omit --dll)")
     version = args.version or project_version()
@@ -194,10 +203,11 @@ def main() -> int:
     runtime = package / "Runtime"
     runtime.mkdir()
     write(package / "Runtime.meta", FOLDER_META.format(guid=guid("Runtime")))
-    shutil.copyfile(dll, runtime / "ParticlePhysics.dll")
-    write(runtime / "ParticlePhysics.dll.meta", PLUGIN_META.format(guid=guid("Runtime/ParticlePhysics.dll")))
-    shutil.copyfile(xml, runtime / "ParticlePhysics.xml")
-    write(runtime / "ParticlePhysics.xml.meta", TEXT_META.format(guid=guid("Runtime/ParticlePhysics.xml")))
+    for assembly, docs in ((dll, xml), (scenes, scenes_xml)):
+        shutil.copyfile(assembly, runtime / assembly.name)
+        write(runtime / f"{assembly.name}.meta", PLUGIN_META.format(guid=guid(f"Runtime/{assembly.name}")))
+        shutil.copyfile(docs, runtime / docs.name)
+        write(runtime / f"{docs.name}.meta", TEXT_META.format(guid=guid(f"Runtime/{docs.name}")))
 
     for folder, source, _, _ in SAMPLES:
         for script in sorted(source.glob("*.cs")):

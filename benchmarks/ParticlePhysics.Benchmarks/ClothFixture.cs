@@ -39,6 +39,12 @@ internal sealed class ClothFixture
     private readonly double[] _initial;
 
     public ClothFixture(int particlesPerSide)
+        : this(particlesPerSide, new ClothScenario().Damping)
+    {
+    }
+
+    /// <summary>The cloth with the springs' axial damping <paramref name="damping"/> (N s/m) instead of the scenario's.</summary>
+    public ClothFixture(int particlesPerSide, double damping)
     {
         if (particlesPerSide < 3)
         {
@@ -47,7 +53,7 @@ internal sealed class ClothFixture
 
         ParticlesPerSide = particlesPerSide;
         TimeStep = Rk4TimeStep(particlesPerSide);
-        Scenario = new ClothScenario { Resolution = 1.0 / (particlesPerSide - 1) };
+        Scenario = new ClothScenario { Resolution = 1.0 / (particlesPerSide - 1), Damping = damping };
         System = Scenario.Build();
         _initial = System.State.ToArray();
     }

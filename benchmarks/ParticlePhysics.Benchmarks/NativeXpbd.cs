@@ -66,8 +66,12 @@ internal sealed class NativeXpbd : IDisposable
         }
     }
 
-    /// <summary>Builds the shared library if needed (gcc, through run.sh --build) and points the P/Invoke at it.</summary>
-    private static void EnsureLoaded()
+    /// <summary>
+    /// Builds the shared libraries of benchmarks/reference-c if needed (gcc, through run.sh --build) and points the
+    /// P/Invokes at them: this class's, <see cref="NativeLeanXpbd"/>'s and <see cref="NativeMeshXpbd"/>'s (an assembly
+    /// has one resolver).
+    /// </summary>
+    internal static void EnsureLoaded()
     {
         lock (_gate)
         {
@@ -77,9 +81,19 @@ internal sealed class NativeXpbd : IDisposable
             }
 
             var directory = SourceDirectory;
-            var library = Path.Combine(directory, "build", "libcloth_xpbd.so");
-            var source = Path.Combine(directory, "cloth_xpbd.c");
-            if (!File.Exists(library) || File.GetLastWriteTimeUtc(library) < File.GetLastWriteTimeUtc(source))
+            var libraries = new (string Name, string Source)[]
+            {
+                (Library, "cloth_xpbd.c"), (NativeLeanXpbd.Library, "cloth_xpbd_lean.c"), (NativeMeshXpbd.Library, "mesh_xpbd.c"),
+            };
+            string PathOf(string name) => Path.Combine(directory, "build", $"lib{name}.so");
+            var stale = false;
+            foreach (var (name, source) in libraries)
+            {
+                var library = PathOf(name);
+                stale |= !File.Exists(library) || File.GetLastWriteTimeUtc(library) < File.GetLastWriteTimeUtc(Path.Combine(directory, source));
+            }
+
+            if (stale)
             {
                 using var build = Process.Start(new ProcessStartInfo("bash", $"\"{Path.Combine(directory, "run.sh")}\" --build")
                 {
@@ -88,7 +102,7 @@ internal sealed class NativeXpbd : IDisposable
                 }) ?? throw new InvalidOperationException("could not start bash to build the C reference");
                 var errors = build.StandardError.ReadToEnd();
                 build.WaitForExit();
-                if (build.ExitCode != 0 || !File.Exists(library))
+                if (build.ExitCode != 0 || Array.Exists(libraries, l => !File.Exists(PathOf(l.Name))))
                 {
                     throw new InvalidOperationException(
                         $"benchmarks/reference-c/run.sh --build failed (exit {build.ExitCode}); it needs gcc. {errors}");
@@ -97,7 +111,7 @@ internal sealed class NativeXpbd : IDisposable
 
             NativeLibrary.SetDllImportResolver(
                 typeof(NativeXpbd).Assembly,
-                (name, assembly, path) => name == Library ? NativeLibrary.Load(library) : IntPtr.Zero);
+                (name, assembly, path) => Array.Exists(libraries, l => l.Name == name) ? NativeLibrary.Load(PathOf(name)) : IntPtr.Zero);
             _resolverSet = true;
         }
     }

@@ -25,7 +25,11 @@ namespace ParticlePhysics.Benchmarks;
 /// implicit solve's iterations of each frame of the first simulated second).</item>
 /// <item><c>xpbd [--sizes 32,64,128,256] [--rounds 7] [--cores [--previous-runner | --spin-us N]]</c>: a short
 /// side-by-side timing of the C xpbd and the library in one process, alternating (or, with <c>--cores</c>, one core
-/// against two), after a bit-for-bit check (<see cref="XpbdComparison"/>).</item>
+/// against two), after a bit-for-bit check (<see cref="XpbdComparison"/>); <c>--lean</c>: the lean C
+/// (<c>cloth_xpbd_lean.c</c>, no damping) against the library with damping 0 and with 0.05.</item>
+/// <item><c>mesh-cloth --c | --scaling | --implicit | --cores</c>: a mesh cloth with membrane and bending: its
+/// projections against their C reference, the cost per triangle from 1,000 to 100,000 triangles, implicit Euler
+/// against the spring cloth, two cores against one (<see cref="MeshClothComparison"/>).</item>
 /// <item><c>runner [--parallelism 2] [--rounds 5] [--ms 150] [--spin-us N] [--engine xpbd|implicit-euler [--n 64]]</c>: the cost
 /// of a hand-off alone (or in the engine), one core against the previous and the current runner, alternating
 /// (<see cref="RunnerHandOffs"/>).</item>
@@ -76,6 +80,11 @@ internal static class Program
         if (args.Length > 0 && args[0] == "xpbd")
         {
             return XpbdComparison.Run(args[1..]);
+        }
+
+        if (args.Length > 0 && args[0] == "mesh-cloth")
+        {
+            return MeshClothComparison.Run(args[1..]);
         }
 
         if (args.Length > 0 && args[0] == "runner")

@@ -24,8 +24,19 @@ internal sealed class XpbdCloth
     private readonly ClothFixture _cloth;
 
     public XpbdCloth(int particlesPerSide)
+        : this(new ClothFixture(particlesPerSide))
     {
-        _cloth = new ClothFixture(particlesPerSide);
+    }
+
+    /// <summary>The cloth with springs of axial damping <paramref name="damping"/> (N s/m).</summary>
+    public XpbdCloth(int particlesPerSide, double damping)
+        : this(new ClothFixture(particlesPerSide, damping))
+    {
+    }
+
+    private XpbdCloth(ClothFixture cloth)
+    {
+        _cloth = cloth;
         Integrator = new Xpbd(Substeps);
     }
 

@@ -23,6 +23,18 @@ internal static class XpbdComparison
         var sizes = (Program.Option(args, "--sizes") ?? "32,64,128,256").Split(',').Select(s => int.Parse(s, CultureInfo.InvariantCulture)).ToArray();
         var rounds = int.Parse(Program.Option(args, "--rounds") ?? "7", CultureInfo.InvariantCulture);
         var cores = args.Contains("--cores");
+        if (args.Contains("--lean"))
+        {
+            Console.WriteLine("xpbd, 10 substeps per 1/60 s frame, one simulated second from rest: the lean C (cloth_xpbd_lean.c, no damping) vs the library with damping 0, and the library with the course's damping 0.05, alternating");
+            Console.WriteLine(string.Create(CultureInfo.InvariantCulture, $"{rounds} rounds; fastest round [ms]; ratio to the lean C of the fastest; median of the per-round ratios"));
+            foreach (var n in sizes)
+            {
+                CompareWithLean(n, rounds);
+            }
+
+            return 0;
+        }
+
         Console.WriteLine(cores
             ? $"xpbd, 10 substeps per 1/60 s frame, one simulated second from rest: library on one core vs {RunnerChoice.Describe(args, 2)}, alternating"
             : "xpbd, 10 substeps per 1/60 s frame, one simulated second from rest: C reference (gcc -O3) vs library on one core, alternating");
@@ -61,6 +73,29 @@ internal static class XpbdComparison
             CultureInfo.InvariantCulture,
             $"n = {n,3} ({library.SpringCount} springs, same bits): C {a.BestWall:F2} ({a.BestCpu:F2}) ms, library {b.BestWall:F2} ({b.BestCpu:F2}) ms; C# / C {b.BestWall / a.BestWall:F3} (CPU {b.BestCpu / a.BestCpu:F3}), median {Rounds.MedianRatio(b.Wall, a.Wall):F3} (CPU {Rounds.MedianRatio(b.Cpu, a.Cpu):F3}); library {b.BestWall * 1e6 / library.ProjectionsPerSecond:F2} ns, C {a.BestWall * 1e6 / library.ProjectionsPerSecond:F2} ns per projection"));
         return true;
+    }
+
+    /// <summary>
+    /// The lean C (no damping, twelve structured batches, separate arrays) against the library with damping 0 and with
+    /// the course's 0.05, three-way alternating. The lean C's order is not the library's: the checksums differ a little.
+    /// </summary>
+    private static void CompareWithLean(int n, int rounds)
+    {
+        using var lean = new NativeLeanXpbd(n);
+        var undamped = new XpbdCloth(n, 0.0);
+        var damped = new XpbdCloth(n);
+        void RunLean()
+        {
+            lean.Reset();
+            lean.Run(XpbdCloth.FrameTime, XpbdCloth.Substeps, XpbdCloth.StepsPerSecond);
+        }
+
+        var (l, u) = Alternate(RunLean, undamped.SimulateSecond, rounds);
+        var (l2, d) = Alternate(RunLean, damped.SimulateSecond, rounds);
+        var projections = undamped.ProjectionsPerSecond;
+        Console.WriteLine(string.Create(
+            CultureInfo.InvariantCulture,
+            $"n = {n,3} ({lean.SpringCount} springs; checksums lean {lean.Checksum():G10}, library {undamped.Checksum():G10}): lean C {l.BestWall:F2} ms ({l.BestWall * 1e6 / projections:F2} ns per projection); library, damping 0: {u.BestWall:F2} ms ({u.BestWall * 1e6 / projections:F2} ns), {u.BestWall / l.BestWall:F3}x, median {Rounds.MedianRatio(u.Wall, l.Wall):F3}; library, damping 0.05: {d.BestWall:F2} ms ({d.BestWall * 1e6 / projections:F2} ns), {d.BestWall / l2.BestWall:F3}x, median {Rounds.MedianRatio(d.Wall, l2.Wall):F3}"));
     }
 
     private static bool CompareCores(int n, int rounds, string[] args)

@@ -4,7 +4,9 @@
 #   run.sh --xpbd [n ...]             xpbd, 10 substeps per 1/60 s frame: ms per simulated second and ns per projection
 #   run.sh --xpbd --run STEPS n       xpbd: STEPS frames from rest, then the checksum (for callgrind)
 #   run.sh --probe [scale]            what two threads can gain on this machine (core_probe.c): 2 t1 / t2 per kernel
-#   run.sh --build                    only builds (build/cloth_rk4, build/cloth_xpbd, build/libcloth_xpbd.so, build/core_probe)
+#   run.sh --lean [n ...]             the lean xpbd (cloth_xpbd_lean.c: no damping, twelve structured batches, separate arrays)
+#   run.sh --build                    only builds (build/cloth_rk4, build/cloth_xpbd, build/libcloth_xpbd.so, build/core_probe,
+#                                     build/cloth_xpbd_lean, build/libcloth_xpbd_lean.so, build/libmesh_xpbd.so)
 # The xpbd build adds -fno-math-errno: sqrt then compiles to the one instruction the JIT emits, instead of the
 # instruction plus a test and a call that sets errno for negative arguments; no result changes (IEEE sqrt is exact).
 # build/libcloth_xpbd.so is the same program as a shared library, which the BenchmarkDotNet comparison
@@ -22,6 +24,12 @@ mkdir -p build
 "$CC" $XPBD_CFLAGS -o build/cloth_xpbd cloth_xpbd.c -lm
 # shellcheck disable=SC2086
 "$CC" $XPBD_CFLAGS -shared -fPIC -o build/libcloth_xpbd.so cloth_xpbd.c -lm
+# shellcheck disable=SC2086
+"$CC" $XPBD_CFLAGS -o build/cloth_xpbd_lean cloth_xpbd_lean.c -lm
+# shellcheck disable=SC2086
+"$CC" $XPBD_CFLAGS -shared -fPIC -o build/libcloth_xpbd_lean.so cloth_xpbd_lean.c -lm
+# shellcheck disable=SC2086
+"$CC" $XPBD_CFLAGS -shared -fPIC -o build/libmesh_xpbd.so mesh_xpbd.c -lm
 # The probe's kernels are scalar on purpose (the engine's arithmetic is): no vectorisation, no -march.
 "$CC" -O2 -fno-tree-vectorize -std=c11 -Wall -Wextra -Werror -pthread -o build/core_probe core_probe.c
 program=cloth_rk4
@@ -30,6 +38,7 @@ case "${1:-}" in
   --build) exit 0 ;;
   --probe) shift; exec build/core_probe "$@" ;;
   --xpbd) program=cloth_xpbd; flags=$XPBD_CFLAGS; shift ;;
+  --lean) program=cloth_xpbd_lean; flags=$XPBD_CFLAGS; shift ;;
 esac
 echo "compiler: $("$CC" --version | head -1); flags: $flags"
 if [ $# -eq 0 ]; then set -- 32 64 128 256; fi

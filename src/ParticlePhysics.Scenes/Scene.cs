@@ -105,6 +105,11 @@ public sealed class Scene
         var text = new StringBuilder();
         text.AppendLine(Invariant($"particles: {world.Count} ({pinned} pinned, {round} with a radius)"));
         text.AppendLine($"springs: {Count("springs")}, rods: {Count("rods")}, cables: {Count("cables")}, loads: {Count("loads")}");
+        if (counts.ContainsKey("cloth triangles") || counts.ContainsKey("bending elements"))
+        {
+            text.AppendLine($"cloth triangles: {Count("cloth triangles")}, bending elements: {Count("bending elements")}");
+        }
+
         text.AppendLine(_colliders.Count == 0
             ? "colliders: none"
             : "colliders: " + string.Join(", ", _colliders.GroupBy(c => c.Kind).Select(g => Invariant($"{g.Count()} {g.Key}"))));

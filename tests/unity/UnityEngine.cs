@@ -124,6 +124,12 @@ namespace UnityEngine
         /// <summary>The world position.</summary>
         public Vector3 position { get; set; }
 
+        /// <summary>The world rotation (the stand-in keeps it for the scripts to read; its points move by the position only).</summary>
+        public Quaternion rotation { get; set; } = Quaternion.identity;
+
+        /// <summary>A direction from world space to local space: unchanged in the stand-in, whose transforms do not rotate.</summary>
+        public Vector3 InverseTransformDirection(Vector3 direction) => direction;
+
         /// <summary>World space to local space: the identity transform of the stand-in only moves by the position.</summary>
         public Vector3 InverseTransformPoint(Vector3 position) =>
             new Vector3(position.x - this.position.x, position.y - this.position.y, position.z - this.position.z);
@@ -151,6 +157,7 @@ namespace UnityEngine
         private Vector3[] _vertices = new Vector3[0];
         private Vector3[] _normals = new Vector3[0];
         private int[] _triangles = new int[0];
+        private Color[] _colors = new Color[0];
         private int _vertexCount;
 
         /// <summary>16-bit indices (at most 65535 vertices) or 32-bit ones.</summary>
@@ -173,6 +180,13 @@ namespace UnityEngine
 
         /// <summary>A copy of the triangle indices.</summary>
         public int[] triangles => (int[])_triangles.Clone();
+
+        /// <summary>The vertex colours (a copy, as in Unity; empty when the mesh has none).</summary>
+        public Color[] colors
+        {
+            get { return (Color[])_colors.Clone(); }
+            set { _colors = value == null ? new Color[0] : (Color[])value.Clone(); }
+        }
 
         /// <summary>Hints that the vertices change often.</summary>
         public void MarkDynamic() => IsDynamic = true;
@@ -294,6 +308,59 @@ namespace UnityEngine
             var copy = new Vector3[length];
             Array.Copy(source, copy, length);
             return copy;
+        }
+    }
+
+    /// <summary>A rotation: Unity's x, y, z, w.</summary>
+    public struct Quaternion
+    {
+        /// <summary>The x component.</summary>
+        public float x;
+
+        /// <summary>The y component.</summary>
+        public float y;
+
+        /// <summary>The z component.</summary>
+        public float z;
+
+        /// <summary>The w component.</summary>
+        public float w;
+
+        /// <summary>A rotation.</summary>
+        public Quaternion(float x, float y, float z, float w)
+        {
+            this.x = x;
+            this.y = y;
+            this.z = z;
+            this.w = w;
+        }
+
+        /// <summary>No rotation.</summary>
+        public static Quaternion identity => new Quaternion(0, 0, 0, 1);
+    }
+
+    /// <summary>A colour: Unity's r, g, b, a floats from 0 to 1.</summary>
+    public struct Color
+    {
+        /// <summary>Red.</summary>
+        public float r;
+
+        /// <summary>Green.</summary>
+        public float g;
+
+        /// <summary>Blue.</summary>
+        public float b;
+
+        /// <summary>Alpha.</summary>
+        public float a;
+
+        /// <summary>A colour.</summary>
+        public Color(float r, float g, float b, float a)
+        {
+            this.r = r;
+            this.g = g;
+            this.b = b;
+            this.a = a;
         }
     }
 
@@ -567,10 +634,8 @@ namespace UnityEngine
     public struct Vector4 { }
     public struct Vector2Int { }
     public struct Vector3Int { }
-    public struct Quaternion { }
     public struct Matrix4x4 { }
     public struct Pose { }
-    public struct Color { }
     public struct Color32 { }
     public class Gradient { }
     public class AnimationCurve { }

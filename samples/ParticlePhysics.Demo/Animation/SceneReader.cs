@@ -9,7 +9,7 @@ namespace ParticlePhysics.Demo.Animation;
 /// Reads what a replay draws, besides the moving positions, from a freshly built world: the radii and pins, the
 /// springs of its force generators, the rods and cables of its constraint sets (as links by their particles or
 /// anchors), the constant loads of a scene (as arrows), the obstacles of its contact sets (as the core describes them
-/// for renderers, with their velocity), and, for a cloth, its grid as a surface.
+/// for renderers, with their velocity), and, for a cloth, its grid or its membrane's triangles as a surface.
 /// This is the one place that knows which core types carry something drawable: a new kind of link or collider joins
 /// the replay by a case here.
 /// </summary>
@@ -44,6 +44,15 @@ internal static class SceneReader
                     {
                         var (particle, anchor) = springs.GetAnchoredSpring(s);
                         scene.AddAnchoredLink(particle, anchor, LinkKind.Spring);
+                    }
+
+                    break;
+                case TriangleMembrane membrane:
+                    // A cloth from a mesh: its triangles are its surface.
+                    for (var t = 0; t < membrane.Count; t++)
+                    {
+                        var (first, second, third) = membrane.GetCorners(t);
+                        scene.AddTriangle(first, second, third);
                     }
 
                     break;

@@ -11,8 +11,8 @@ namespace ParticlePhysics.Scenes.Kinds;
 /// springs in one <see cref="ZeroLengthSprings"/>, all rods and cables in one <see cref="RodNetwork"/>, all loads in one
 /// <see cref="ConstantLoads"/>), in the order the objects list them. <see cref="Finish"/> adds them to the world in a
 /// fixed order, the order the course's scenarios use, so that a scene written like a scenario gives its bits:
-/// forces springs, zero-length springs, loads, drag, gravity; constraint sets the springs' projections (for xpbd),
-/// the rods, the contacts.
+/// forces springs, zero-length springs, the cloths' membranes and the bending, loads, drag, gravity; constraint sets
+/// the projections of the springs, membranes and bending (for xpbd), the rods, the contacts.
 /// </summary>
 internal sealed class SceneBuilder
 {
@@ -21,6 +21,9 @@ internal sealed class SceneBuilder
     private ZeroLengthSprings? _linear;
     private RodNetwork? _rods;
     private ConstantLoads? _loads;
+    private TriangleMembrane? _membrane;
+    private QuadraticBending? _bending;
+    private ExcludedPairs? _meshEdges;
 
     public SceneBuilder(ParticleWorld world, string file)
     {
@@ -45,6 +48,15 @@ internal sealed class SceneBuilder
     /// <summary>The constant loads, made on first use.</summary>
     public ConstantLoads Loads => _loads ??= new ConstantLoads(World);
 
+    /// <summary>The cloths' membranes, made on first use.</summary>
+    public TriangleMembrane Membrane => _membrane ??= new TriangleMembrane(World);
+
+    /// <summary>The cloths' and ropes' bending, made on first use.</summary>
+    public QuadraticBending Bending => _bending ??= new QuadraticBending(World);
+
+    /// <summary>Notes a cloth's mesh edge: its two particles do not collide with each other.</summary>
+    public void AddMeshEdge(int first, int second) => (_meshEdges ??= new ExcludedPairs()).Add(first, second);
+
     /// <summary>How many of each kind of element the objects added ("springs", "rods", ...), for a scene's description.</summary>
     public Dictionary<string, int> Counts { get; } = new();
 
@@ -66,6 +78,16 @@ internal sealed class SceneBuilder
         if (_linear is not null)
         {
             world.AddForce(_linear);
+        }
+
+        if (_membrane is not null)
+        {
+            world.AddForce(_membrane);
+        }
+
+        if (_bending is not null)
+        {
+            world.AddForce(_bending);
         }
 
         if (_loads is not null)
@@ -91,6 +113,16 @@ internal sealed class SceneBuilder
         if (_linear is not null)
         {
             world.AddConstraints(new SpringProjection(_linear));
+        }
+
+        if (_membrane is not null)
+        {
+            world.AddConstraints(new MembraneProjection(_membrane));
+        }
+
+        if (_bending is not null)
+        {
+            world.AddConstraints(new BendingProjection(_bending));
         }
 
         if (_rods is not null)
@@ -123,8 +155,8 @@ internal sealed class SceneBuilder
     // The contract: pairs joined by a spring, rod or mesh edge do not collide.
     private ExcludedPairs? JoinedPairs()
     {
-        var pairs = new ExcludedPairs();
-        var any = false;
+        var pairs = _meshEdges ?? new ExcludedPairs();
+        var any = _meshEdges is not null;
         if (_springs is not null)
         {
             for (var s = 0; s < _springs.Count; s++)

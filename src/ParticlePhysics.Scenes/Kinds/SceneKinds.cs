@@ -32,8 +32,8 @@ internal sealed class SceneKinds
         kinds.Add(LinksKind.Rods);
         kinds.Add(LinksKind.Cables);
         kinds.Add(new LoadKind());
-        kinds.Add(NotBuiltYet.Object("cloth", "cloth from any mesh"));
-        kinds.Add(NotBuiltYet.Object("rope", "cloth from any mesh"));
+        kinds.Add(new ClothKind());
+        kinds.Add(new RopeKind());
         kinds.Add(NotBuiltYet.Object("rigid", "solids from particles"));
         kinds.Add(NotBuiltYet.Object("soft", "solids from particles"));
         kinds.Add(NotBuiltYet.Object("granular", "solids from particles"));

@@ -94,6 +94,12 @@ public sealed partial class SpringProjection
             }
         }
 
+        _undamped = true;
+        for (var k = 1; k < _pairCoefficients.Length; k += 2)
+        {
+            _undamped &= _pairCoefficients[k] == 0.0;
+        }
+
         _preparedStep = double.NaN;
         _count = count;
         _particles = particles;

@@ -50,11 +50,13 @@ public sealed partial class SpringProjection
         private int _pairEnd;
         private int _anchoredBegin;
         private int _anchoredEnd;
+        private bool _undamped;
 
         public void Set(
             PairSpring* pairs, int pairBegin, int pairEnd, AnchoredSpring* anchored, int anchoredBegin, int anchoredEnd,
-            double* x, double* x0, double* w)
+            double* x, double* x0, double* w, bool undamped)
         {
+            _undamped = undamped;
             _pairs = pairs;
             _pairBegin = pairBegin;
             _pairEnd = pairEnd;
@@ -69,7 +71,15 @@ public sealed partial class SpringProjection
         public void Execute(int chunk, int chunkCount)
         {
             var (pairBegin, pairEnd) = Chunk.Range(chunk, chunkCount, _pairEnd - _pairBegin);
-            ProjectPairs(_pairs, _pairBegin + pairBegin, _pairBegin + pairEnd, _x, _x0, _w);
+            if (_undamped)
+            {
+                ProjectUndampedPairs(_pairs, _pairBegin + pairBegin, _pairBegin + pairEnd, _x, _w);
+            }
+            else
+            {
+                ProjectPairs(_pairs, _pairBegin + pairBegin, _pairBegin + pairEnd, _x, _x0, _w);
+            }
+
             var (anchoredBegin, anchoredEnd) = Chunk.Range(chunk, chunkCount, _anchoredEnd - _anchoredBegin);
             ProjectAnchored(_anchored, _anchoredBegin + anchoredBegin, _anchoredBegin + anchoredEnd, _x, _x0, _w);
         }

@@ -68,6 +68,10 @@ public sealed partial class SpringProjection : IForceProjection
     private AnchoredSpring[] _anchored = Array.Empty<AnchoredSpring>();
     private double _preparedStep = double.NaN;
 
+    // Every pair spring without damping: the projection then skips the damping's terms (the start positions and the
+    // move along the spring), a third of the memory each spring reads. The same values: c h (u . dx) adds 0.
+    private bool _undamped;
+
     // The layout (ConstraintPartition): batch b is _pairs[_pairStarts[b] ..] and _anchored[_anchoredStarts[b] ..];
     // group g is the batches [_groupBatchStarts[g], _groupBatchStarts[g + 1]); phase f the groups
     // [_phaseStarts[f], _phaseStarts[f + 1]).
@@ -202,7 +206,15 @@ public sealed partial class SpringProjection : IForceProjection
     {
         for (var b = _groupBatchStarts[begin]; b < _groupBatchStarts[end]; b++)
         {
-            ProjectPairs(pairs, _pairStarts[b], _pairStarts[b + 1], x, x0, w);
+            if (_undamped)
+            {
+                ProjectUndampedPairs(pairs, _pairStarts[b], _pairStarts[b + 1], x, w);
+            }
+            else
+            {
+                ProjectPairs(pairs, _pairStarts[b], _pairStarts[b + 1], x, x0, w);
+            }
+
             int anchoredBegin = _anchoredStarts[b], anchoredEnd = _anchoredStarts[b + 1];
             if (anchoredBegin < anchoredEnd)
             {
@@ -226,12 +238,20 @@ public sealed partial class SpringProjection : IForceProjection
             var chunks = Math.Min(2 * runner.MaxParallelism, size / MinSpringsPerChunk);
             if (chunks > 1)
             {
-                _batchPass.Set(pairs, pairBegin, pairEnd, anchored, anchoredBegin, anchoredEnd, x, x0, w);
+                _batchPass.Set(pairs, pairBegin, pairEnd, anchored, anchoredBegin, anchoredEnd, x, x0, w, _undamped);
                 runner.Run(_batchPass, chunks);
                 continue;
             }
 
-            ProjectPairs(pairs, pairBegin, pairEnd, x, x0, w);
+            if (_undamped)
+            {
+                ProjectUndampedPairs(pairs, pairBegin, pairEnd, x, w);
+            }
+            else
+            {
+                ProjectPairs(pairs, pairBegin, pairEnd, x, x0, w);
+            }
+
             ProjectAnchored(anchored, anchoredBegin, anchoredEnd, x, x0, w);
         }
     }
@@ -277,6 +297,49 @@ public sealed partial class SpringProjection : IForceProjection
             double cx = dlambda * ux, cy = dlambda * uy, cz = dlambda * uz;
 
             // The two ends are distinct particles (checked in Refresh), so the values read above are still theirs.
+            xi[0] = xi0 + (wi * cx);
+            xi[1] = xi1 + (wi * cy);
+            xi[2] = xi2 + (wi * cz);
+            xj[0] = xj0 - (wj * cx);
+            xj[1] = xj1 - (wj * cy);
+            xj[2] = xj2 - (wj * cz);
+        }
+    }
+
+    /// <summary>
+    /// <see cref="ProjectPairs"/> for springs without damping (c h = 0): dlambda = -k h^2 C / (k h^2 w + 1), without
+    /// reading the start positions.
+    /// </summary>
+    private static unsafe void ProjectUndampedPairs(PairSpring* springs, int begin, int end, double* x, double* w)
+    {
+        for (PairSpring* p = springs + begin, last = springs + end; p < last; p++)
+        {
+            uint a = p->First, b = p->Second;
+            double wi = w[a], wj = w[b];
+            var wsum = wi + wj;
+            if (wsum == 0.0)
+            {
+                continue;
+            }
+
+            double* xi = x + (3L * a), xj = x + (3L * b);
+            double xi0 = xi[0], xi1 = xi[1], xi2 = xi[2], xj0 = xj[0], xj1 = xj[1], xj2 = xj[2];
+            double dx = xi0 - xj0, dy = xi1 - xj1, dz = xi2 - xj2;
+            var squared = (dx * dx) + (dy * dy) + (dz * dz);
+            if (squared == 0.0)
+            {
+                continue;
+            }
+
+            var l = Math.Sqrt(squared);
+            var inverse = 1.0 / l;
+            double ux = dx * inverse, uy = dy * inverse, uz = dz * inverse;
+            var numerator = p->Stiffness * (l - p->RestLength);
+            var denominator = (p->Stiffness * wsum) + 1.0;
+            var dlambda = denominator <= double.MaxValue && Math.Abs(numerator) <= double.MaxValue
+                ? -numerator / denominator
+                : StiffLimit(p->Stiffness, 0.0, l - p->RestLength, 0.0, wsum);
+            double cx = dlambda * ux, cy = dlambda * uy, cz = dlambda * uz;
             xi[0] = xi0 + (wi * cx);
             xi[1] = xi1 + (wi * cy);
             xi[2] = xi2 + (wi * cz);

@@ -70,6 +70,9 @@ internal sealed class CandidatePairs
     /// <summary>Pair <paramref name="pair"/> came to rest.</summary>
     public void MarkResting(int pair) => _resting[pair] = true;
 
+    /// <summary>Pair <paramref name="pair"/> rests no longer (a bounce of one of its particles changed its course).</summary>
+    public void ClearResting(int pair) => _resting[pair] = false;
+
     /// <summary>Where particle <paramref name="particle"/>'s pairs start in the index (the next particle's start ends them).</summary>
     public int StartOf(int particle) => _startOf[particle];
 

@@ -162,11 +162,11 @@ public sealed partial class ContactSet
 
         for (var k = _pairs.StartOf(i); k < _pairs.StartOf(i + 1); k++)
         {
+            // A pair that rested at its last contact rests no longer once a bounce changed i's course: a ball hit in
+            // a row of touching balls must pass the blow on (Newton's cradle), not have it absorbed by the separation.
             var p = _pairs.PairAt(k);
-            if (!_pairs.IsResting(p))
-            {
-                QueuePairImpact(in context, p, s, radii);
-            }
+            _pairs.ClearResting(p);
+            QueuePairImpact(in context, p, s, radii);
         }
     }
 

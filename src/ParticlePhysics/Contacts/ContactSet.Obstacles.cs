@@ -18,7 +18,18 @@ public sealed partial class ContactSet
         var min = new Vector3d(Math.Min(lo.X, hi.X), Math.Min(lo.Y, hi.Y), Math.Min(lo.Z, hi.Z));
         var max = new Vector3d(Math.Max(lo.X, hi.X), Math.Max(lo.Y, hi.Y), Math.Max(lo.Z, hi.Z));
         var grow = new Vector3d(reach, reach, reach);
-        return _colliders.Collect(min - grow, max + grow, ParticleFilter(particle), after, ref _candidates);
+        var started = BroadPhaseStart();
+        var found = _colliders.Collect(min - grow, max + grow, ParticleFilter(particle), after, ref _candidates);
+        BroadPhaseEnd(started, 0);
+        return found;
+    }
+
+    /// <summary>The obstacles' boxes swept over [from, to], which ObstaclesNear reads (timed as the broad phase).</summary>
+    private void UpdateObstacleBoxes(double from, double to)
+    {
+        var started = BroadPhaseStart();
+        _colliders.Update(_obstacles, from, to);
+        BroadPhaseEnd(started, 0);
     }
 
     /// <summary>The same around one point.</summary>

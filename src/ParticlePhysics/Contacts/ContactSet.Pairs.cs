@@ -38,10 +38,13 @@ public sealed partial class ContactSet
             }
         }
 
+        var started = BroadPhaseStart();
         if (!_sweptGrid.TryFindPairs(min, max, n, BroadPhaseFilter(), _maxCandidatePairs))
         {
             RefuseCandidatePairs(n);
         }
+
+        BroadPhaseEnd(started, _sweptGrid.PairCount);
 
         var first = _sweptGrid.First.ForReading();
         var second = _sweptGrid.Second.ForReading();

@@ -37,6 +37,7 @@ public sealed partial class ContactSet
         var second = _pairs.Second;
         var pairs = first.Length;
         CollectObstacleContacts(in context, time);
+        CountContacts(_near.Count);
         for (var pass = 0; pass < iterations; pass++)
         {
             var moved = 0.0;

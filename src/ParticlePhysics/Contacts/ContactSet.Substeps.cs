@@ -58,7 +58,7 @@ public sealed partial class ContactSet
             _reactions.Clear(_obstacles.Count);
         }
 
-        _colliders.Update(_obstacles, context.Time, end);
+        UpdateObstacleBoxes(context.Time, end);
         if (ParticleCollisions)
         {
             var swept = MarkFastParticles(n, x, previous, radii);
@@ -152,6 +152,7 @@ public sealed partial class ContactSet
         var v = context.Velocities;
         var inverseMasses = context.InverseMasses.ForReading();
         var h = context.Dt;
+        CountContacts(_substep.Count);
         for (var c = 0; c < _substep.Count; c++)
         {
             var k = _substep.Kind(c);
@@ -368,10 +369,13 @@ public sealed partial class ContactSet
             }
         }
 
+        var started = BroadPhaseStart();
         if (!_restingGrid.TryFindPairs(min, max, n, BroadPhaseFilter(), _maxCandidatePairs))
         {
             RefuseCandidatePairs(n);
         }
+
+        BroadPhaseEnd(started, _restingGrid.PairCount);
 
         return _restingGrid.PairCount;
     }

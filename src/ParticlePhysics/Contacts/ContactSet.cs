@@ -298,7 +298,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
             _reactions.Clear(_obstacles.Count); // called outside a world's step: this call's reactions alone
         }
 
-        _colliders.Update(_obstacles, context.Time, context.Time + context.Dt);
+        UpdateObstacleBoxes(context.Time, context.Time + context.Dt);
         SetPaths(in context);
         _resting.Clear(n);
         if (ParticleCollisions)
@@ -312,6 +312,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         ResolveImpacts(in context);
         ApplyRestingFriction(in context);
         Separate(in context, _projectionIterations);
+        CountContacts(_log.Count);
     }
 
     private void EnsureCapacity(int n)

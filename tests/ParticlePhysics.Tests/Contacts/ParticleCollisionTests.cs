@@ -142,6 +142,57 @@ public class ParticleCollisionTests
         }
     }
 
+    [Theory]
+    [InlineData(0.0)]
+    [InlineData(1e-9)]
+    [InlineData(1e-4)]
+    [InlineData(1e-3)]
+    public void A_blow_passes_along_a_row_of_touching_balls_as_in_newtons_cradle(double gap)
+    {
+        // Four balls at rest in a row, touching (or nearly), and a fifth striking the row at u, restitution 1, equal
+        // masses. Each impact exchanges the two balls' velocities, so the blow passes along and the last ball leaves at
+        // u while the others stand still. The touching pairs rest at the start of the step; before, they stayed
+        // resting after the first ball's bounce, and the separation moved the four on together at u / 4. Under xpbd, a
+        // substep's velocity pass takes its contacts together, so there only momentum and energy are held.
+        const double u = 1.5;
+        foreach (var name in IntegratorCatalog.Names)
+        {
+            var world = new ParticleWorld();
+            world.AddParticle(new Vector3d(-0.05 - gap - (0.5 * u / 60.0), 0, 0), new Vector3d(u, 0, 0), 0.1);
+            for (var i = 1; i < 5; i++)
+            {
+                world.AddParticle(new Vector3d((0.1 + gap) * (i - 1) + 0.05, 0, 0), 0.1);
+            }
+
+            for (var i = 0; i < 5; i++)
+            {
+                world.SetRadius(i, 0.05);
+            }
+
+            world.AddConstraints(new ContactSet { ParticleCollisions = true, ParticleRestitution = 1 });
+            var stepper = IntegratorCatalog.Create(name);
+            for (var step = 0; step < 6; step++)
+            {
+                world.Step(stepper, 1.0 / 60.0);
+            }
+
+            Assert.True(Math.Abs(world.TotalMomentum().X - (0.1 * u)) < 1e-12, $"{name}, gap {gap}: momentum {world.TotalMomentum()}");
+            if (name == "xpbd")
+            {
+                // A substep solves its contacts' velocities together: the blow spreads over the row (docs/architecture.md).
+                Assert.True(world.KineticEnergy() <= (0.05 * u * u) + 1e-12, $"xpbd, gap {gap}: energy {world.KineticEnergy()}");
+                continue;
+            }
+
+            for (var i = 0; i < 4; i++)
+            {
+                Assert.True(Math.Abs(world.GetVelocity(i).X) < 1e-9 * u, $"{name}, gap {gap}: ball {i} moves at {world.GetVelocity(i).X} m/s");
+            }
+
+            Assert.True(Math.Abs(world.GetVelocity(4).X - u) < 1e-9 * u, $"{name}, gap {gap}: the last ball leaves at {world.GetVelocity(4).X} m/s, not {u}");
+        }
+    }
+
     [Fact]
     public void Coincident_particles_get_an_antisymmetric_unit_normal_from_their_indices_in_every_direction()
     {

@@ -57,6 +57,14 @@ public sealed class ReplaySceneTests
     }
 
     [Fact]
+    public void A_mesh_cloths_membrane_triangles_are_its_surface()
+    {
+        var flag = ParticlePhysics.Scenes.Scene.Load(Path.Combine(Engine.ReadmeExamplesTests.RepositoryRoot(), "samples", "scenes", "flag.json"));
+        var scene = SceneReader.Read(flag.Build());
+        Assert.Equal(2 * 12 * 8, scene.Triangles.Count / 3);
+    }
+
+    [Fact]
     public void The_drape_scene_has_its_sphere_and_the_radius_of_every_particle()
     {
         var drape = new DrapeScenario();

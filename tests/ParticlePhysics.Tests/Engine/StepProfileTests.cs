@@ -96,22 +96,39 @@ public class StepProfileTests
         Assert.Equal(2, contacts.Ended);
     }
 
-    [Fact]
-    public void The_real_contact_set_is_timed_as_a_constraint_set_until_it_reports_as_a_contact_stage()
+    [Theory]
+    [InlineData("rk4")]
+    [InlineData("xpbd")]
+    public void The_contact_set_is_booked_as_contacts_with_its_broad_phase_pairs_and_contacts(string integrator)
     {
-        // ContactSet does not implement IContactStage yet: its calls count among the constraint sets'.
-        var world = new BouncingBallScenario().Build();
-        world.Profiling = true;
-        world.Step(new RungeKutta4(), 0.01);
-        var profile = world.LastStepProfile;
-        var stages = 0;
-        foreach (var set in world.Constraints)
+        // Ten balls dropped in a box: after a second they touch the floor, and each other where they pile up.
+        var world = new ParticleWorld();
+        world.AddForce(new Gravity());
+        for (var i = 0; i < 10; i++)
         {
-            stages += set is IContactStage ? 1 : 0;
+            world.AddParticle(new Vector3d(0.05 * (i % 3), 0.1 + (0.15 * i), 0.05 * (i / 3 % 3)), 1.0);
+            world.SetRadius(i, 0.05);
         }
 
-        Assert.Equal(stages, profile.ContactCalls);
-        Assert.Equal(world.Constraints.Count - stages, profile.ConstraintCalls);
+        var contacts = new ContactSet { ParticleCollisions = true };
+        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(0, 1, 0)));
+        world.AddConstraints(contacts);
+        var stepper = IntegratorCatalog.Create(integrator);
+        for (var s = 0; s < 100; s++)
+        {
+            world.Step(stepper, 0.01);
+        }
+
+        world.Profiling = true;
+        world.Step(stepper, 0.01);
+        var profile = world.LastStepProfile;
+        Assert.Equal(integrator == "xpbd" ? 2 * profile.Substeps : 1, profile.ContactCalls);
+        Assert.Equal(0, profile.ConstraintCalls);
+        Assert.True(profile.ContactPairs > 0, "the balls are near each other: the broad phase lists pairs");
+        Assert.True(profile.Contacts >= 1, "at least the lowest ball rests on the floor");
+        Assert.True(profile.ContactSeconds > 0.0);
+        Assert.True(profile.BroadPhaseSeconds > 0.0);
+        Assert.True(profile.BroadPhaseSeconds <= profile.ContactSeconds);
         AssertTimesAddUp(profile);
     }
 

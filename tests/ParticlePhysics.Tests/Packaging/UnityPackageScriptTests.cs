@@ -20,7 +20,10 @@ public class UnityPackageScriptTests
         "Runtime.meta",
         "Runtime/ParticlePhysics.dll", "Runtime/ParticlePhysics.dll.meta",
         "Runtime/ParticlePhysics.xml", "Runtime/ParticlePhysics.xml.meta",
+        "Runtime/ParticlePhysics.Scenes.dll", "Runtime/ParticlePhysics.Scenes.dll.meta",
+        "Runtime/ParticlePhysics.Scenes.xml", "Runtime/ParticlePhysics.Scenes.xml.meta",
         "Samples~/Cloth/SimulatedCloth.cs", "Samples~/Cloth/SimulatedCloth.cs.meta",
+        "Samples~/MeshCloth/MeshCloth.cs", "Samples~/MeshCloth/MeshCloth.cs.meta",
         "package.json", "package.json.meta",
     };
 
@@ -53,16 +56,22 @@ public class UnityPackageScriptTests
             Assert.Equal("MIT", json.GetProperty("license").GetString());
             Assert.False(string.IsNullOrWhiteSpace(json.GetProperty("displayName").GetString()));
             Assert.False(string.IsNullOrWhiteSpace(json.GetProperty("description").GetString()));
-            var sample = Assert.Single(json.GetProperty("samples").EnumerateArray().ToArray());
-            Assert.Equal("Samples~/Cloth", sample.GetProperty("path").GetString());
-            Assert.False(string.IsNullOrWhiteSpace(sample.GetProperty("displayName").GetString()));
-            Assert.False(string.IsNullOrWhiteSpace(sample.GetProperty("description").GetString()));
+            var samples = json.GetProperty("samples").EnumerateArray().ToArray();
+            Assert.Equal(new[] { "Samples~/Cloth", "Samples~/MeshCloth" }, samples.Select(s => s.GetProperty("path").GetString()));
+            Assert.All(samples, sample =>
+            {
+                Assert.False(string.IsNullOrWhiteSpace(sample.GetProperty("displayName").GetString()));
+                Assert.False(string.IsNullOrWhiteSpace(sample.GetProperty("description").GetString()));
+            });
 
             // The shipped script is the one the tests compile; the README is the package users' one.
             Assert.Equal(
                 File.ReadAllText(Path.Combine(root, "samples/unity/Cloth/SimulatedCloth.cs")),
                 File.ReadAllText(Path.Combine(package, "Samples~/Cloth/SimulatedCloth.cs")));
             Assert.Contains("MonoImporter:", File.ReadAllText(Path.Combine(package, "Samples~/Cloth/SimulatedCloth.cs.meta")), StringComparison.Ordinal);
+            Assert.Equal(
+                File.ReadAllText(Path.Combine(root, "samples/unity/MeshCloth/MeshCloth.cs")),
+                File.ReadAllText(Path.Combine(package, "Samples~/MeshCloth/MeshCloth.cs")));
             Assert.Equal(
                 File.ReadAllText(Path.Combine(root, "src/ParticlePhysics/README.md")),
                 File.ReadAllText(Path.Combine(package, "README.md")));
@@ -72,6 +81,9 @@ public class UnityPackageScriptTests
             Assert.Contains("      Any:\n    second:\n      enabled: 1", pluginMeta, StringComparison.Ordinal);
             Assert.Contains("folderAsset: yes", File.ReadAllText(Path.Combine(package, "Runtime.meta")), StringComparison.Ordinal);
             Assert.Equal(File.ReadAllBytes(dll), File.ReadAllBytes(Path.Combine(package, "Runtime/ParticlePhysics.dll")));
+            var scenes = typeof(ParticlePhysics.Scenes.Scene).Assembly.Location;
+            Assert.Equal(File.ReadAllBytes(scenes), File.ReadAllBytes(Path.Combine(package, "Runtime/ParticlePhysics.Scenes.dll")));
+            Assert.Contains("PluginImporter:", File.ReadAllText(Path.Combine(package, "Runtime/ParticlePhysics.Scenes.dll.meta")), StringComparison.Ordinal);
         }
         finally
         {

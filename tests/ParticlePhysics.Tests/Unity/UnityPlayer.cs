@@ -20,16 +20,16 @@ internal sealed class UnityPlayer : IDisposable
     private readonly Action<float> _runFrame;
     private readonly Type _debug;
 
-    public UnityPlayer(Action<object>? configure = null)
+    public UnityPlayer(Action<object>? configure = null, string sample = "SimulatedCloth", byte[]? scriptImage = null)
     {
         _context = new StandInContext();
         var unityEngine = _context.LoadFromStream(new MemoryStream(UnityScripts.StandInImage));
-        var scripts = _context.LoadFromStream(new MemoryStream(UnityScripts.SampleImage));
+        var scripts = _context.LoadFromStream(new MemoryStream(scriptImage ?? UnityScripts.SampleImage));
         var playerLoop = unityEngine.GetType("UnityEngine.StandIn.PlayerLoop", throwOnError: true)!;
         _runFrame = playerLoop.GetMethod("RunFrame")!.CreateDelegate<Action<float>>();
         _debug = unityEngine.GetType("UnityEngine.Debug", throwOnError: true)!;
 
-        SampleType = scripts.GetType("SimulatedCloth", throwOnError: true)!;
+        SampleType = scripts.GetType(sample, throwOnError: true)!;
         var gameObjectType = unityEngine.GetType("UnityEngine.GameObject", throwOnError: true)!;
         GameObject = Activator.CreateInstance(gameObjectType, "Cloth")!;
         Sample = gameObjectType.GetMethod("AddComponent")!.MakeGenericMethod(SampleType).Invoke(GameObject, null)!;

@@ -19,9 +19,11 @@ internal static class UnityScripts
 {
     public const string SamplePath = "samples/unity/Cloth/SimulatedCloth.cs";
     public const string StandInPath = "tests/unity/UnityEngine.cs";
+    public const string MeshClothPath = "samples/unity/MeshCloth/MeshCloth.cs";
 
     private static readonly Lazy<byte[]> _standIn = new(() => CompileOrThrow("UnityEngine", StandInPath));
     private static readonly Lazy<byte[]> _sample = new(() => CompileOrThrow("Assembly-CSharp", SamplePath));
+    private static readonly Lazy<byte[]> _meshCloth = new(() => CompileOrThrow("Assembly-CSharp", MeshClothPath));
 
     /// <summary>Unity's parse options: C# 9, no preprocessor symbols of ours.</summary>
     public static CSharpParseOptions ParseOptions { get; } = new(LanguageVersion.CSharp9);
@@ -31,6 +33,9 @@ internal static class UnityScripts
 
     /// <summary>The sample's script assembly (Unity's Assembly-CSharp), compiled once.</summary>
     public static byte[] SampleImage => _sample.Value;
+
+    /// <summary>The mesh cloth sample's script assembly, compiled once.</summary>
+    public static byte[] MeshClothImage => _meshCloth.Value;
 
     /// <summary>netstandard.dll 2.1 (the reference assembly of the NETStandard.Library.Ref package).</summary>
     public static MetadataReference NetStandard { get; } = MetadataReference.CreateFromFile(NetStandardPath());
