@@ -70,7 +70,7 @@ internal static class ContactSearch
                 return s;
             }
 
-            s += obstacle.SafeStep(qx, qy, qz, vx - wx, vy - wy, vz - wz, radius, gap, rate, bend);
+            s += obstacle.SafeStep(qx, qy, qz, vx - wx, vy - wy, vz - wz, radius, gap, rate, bend, to - s);
             if (!(s <= to))
             {
                 return double.PositiveInfinity;

@@ -328,7 +328,7 @@ public sealed partial class ContactSet
                 return s < h;
             }
 
-            s += obstacle.SafeStep(q.X, q.Y, q.Z, velocity.X, velocity.Y, velocity.Z, radius, gap, rate, 0.0);
+            s += obstacle.SafeStep(q.X, q.Y, q.Z, velocity.X, velocity.Y, velocity.Z, radius, gap, rate, 0.0, h - s);
             if (!(s < h))
             {
                 return false;

@@ -134,6 +134,6 @@ public sealed class HeightFieldObstacle : Obstacle
 
     /// <inheritdoc />
     internal override double SafeStep(
-        double qx, double qy, double qz, double wx, double wy, double wz, double radius, double gap, double rate, double bend) =>
-        _surface.SafeStep(qx, qy, qz, wx, wy, wz, radius, gap, rate, bend);
+        double qx, double qy, double qz, double wx, double wy, double wz, double radius, double gap, double rate, double bend, double limit) =>
+        _surface.SafeStep(qx, qy, qz, wx, wy, wz, radius, gap, rate, bend, limit);
 }

@@ -156,8 +156,21 @@ public sealed class MeshObstacle : Obstacle
     public override bool Cast(
         Vector3d origin, Vector3d direction, double radius, double maxDistance, out double distance, out Vector3d normal, out int feature)
     {
+        // Whether it starts touching or behind the surface: only a start near the mesh's box can (or any start, behind an
+        // open one-sided mesh, whose solid reaches past its box); a far start would walk much of the tree for nothing.
         var local = ToLocal(origin);
-        var gap = _mesh.Distance(local, !TwoSided, out var gradient, out var nearest) - radius;
+        var lo = _mesh.Min;
+        var hi = _mesh.Max;
+        var outside = Math.Max(Math.Max(Math.Max(lo.X - local.X, local.X - hi.X), Math.Max(lo.Y - local.Y, local.Y - hi.Y)), Math.Max(lo.Z - local.Z, local.Z - hi.Z));
+        var mayTouch = !(outside > radius) || (!TwoSided && !_mesh.IsClosed);
+        var gap = 1.0;
+        var gradient = Vector3d.Zero;
+        var nearest = -1;
+        if (mayTouch)
+        {
+            gap = _mesh.Distance(local, !TwoSided, out gradient, out nearest) - radius;
+        }
+
         if (!(gap > 0.0))
         {
             distance = 0.0;
@@ -181,7 +194,7 @@ public sealed class MeshObstacle : Obstacle
 
     /// <summary>The least of the triangles' tangent bounds (<see cref="TriangleMesh.SafeStep"/>) while the gap is open.</summary>
     internal override double SafeStep(
-        double qx, double qy, double qz, double wx, double wy, double wz, double radius, double gap, double rate, double bend)
+        double qx, double qy, double qz, double wx, double wy, double wz, double radius, double gap, double rate, double bend, double limit)
     {
         if (!(gap > ContactSearch.Tolerance))
         {
@@ -190,7 +203,7 @@ public sealed class MeshObstacle : Obstacle
 
         var w = new Vector3d(wx, wy, wz);
         var local = new Vector3d(Vector3d.Dot(w, _axisX), Vector3d.Dot(w, _axisY), Vector3d.Dot(w, _axisZ));
-        return _mesh.SafeStep(ToLocal(new Vector3d(qx, qy, qz)), local, radius, bend);
+        return _mesh.SafeStep(ToLocal(new Vector3d(qx, qy, qz)), local, radius, bend, limit);
     }
 
     /// <summary>The box around the triangles where the pose puts them, grown by 1e-12 of its size against rounding.</summary>

@@ -239,9 +239,10 @@ public abstract class Obstacle
     /// <summary>
     /// A step u &gt;= 0 along a path at relative place q, relative velocity w and bend at most <paramref name="bend"/>
     /// within which the gap cannot close (<see cref="ContactSearch"/>), given the gap and its rate at q. Meshes and height
-    /// fields override it with the least of their triangles' convex bounds.
+    /// fields override it with the least of their triangles' convex bounds, and may return +infinity once they know the
+    /// gap cannot close within <paramref name="limit"/>, the rest of the search's interval.
     /// </summary>
     internal virtual double SafeStep(
-        double qx, double qy, double qz, double wx, double wy, double wz, double radius, double gap, double rate, double bend) =>
+        double qx, double qy, double qz, double wx, double wy, double wz, double radius, double gap, double rate, double bend, double limit) =>
         IsConvex ? ContactSearch.SafeStep(gap, rate, bend) : ContactSearch.LipschitzStep(gap, rate, Math.Sqrt((wx * wx) + (wy * wy) + (wz * wz)), bend);
 }

@@ -214,9 +214,11 @@ internal sealed class TriangleMesh
     /// moving at w along a path of bend at most A: the distance to the mesh is the least of the triangles' distances,
     /// each convex and 1-Lipschitz, so the first root of the least of their lower bounds is the first root of a lower
     /// bound of the mesh's gap. A node whose box is at distance D cannot hold a triangle with a step below the Lipschitz
-    /// bound of the gap D - r at speed |w|, and is skipped once a step that short is known.
+    /// bound of the gap D - r at speed |w|, and is skipped once a step that short is known, or when that bound passes
+    /// <paramref name="limit"/> (the rest of the search's interval): +infinity when every node is, for then nothing can
+    /// be touched within it. So a particle far from the mesh costs a box or two, not a walk of the tree.
     /// </summary>
-    public double SafeStep(Vector3d p, Vector3d w, double radius, double bend)
+    public double SafeStep(Vector3d p, Vector3d w, double radius, double bend, double limit)
     {
         Span<int> stack = stackalloc int[BoxTree.MaxDepth];
         var speed = w.Length;
@@ -226,7 +228,8 @@ internal sealed class TriangleMesh
         while (top > 0)
         {
             var node = stack[--top];
-            if (!(LipschitzBound(_tree.DistanceTo(node, p.X, p.Y, p.Z) - radius, speed, bend) < best))
+            var bound = LipschitzBound(_tree.DistanceTo(node, p.X, p.Y, p.Z) - radius, speed, bend);
+            if (!(bound < best) || bound > limit)
             {
                 continue;
             }
