@@ -74,6 +74,71 @@ def ball_pit():
     }
 
 
+def icosphere(radius, subdivisions):
+    # The icosahedron, each triangle split into four per level, new vertices pushed out to the sphere; wound
+    # counter-clockwise seen from outside (as StandardMeshes.Icosphere in the library).
+    t = (1 + 5 ** 0.5) / 2
+    points = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t), (0, -1, -t), (0, 1, -t),
+              (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    unit = lambda p: tuple(c / sum(x * x for x in p) ** 0.5 for c in p)
+    points = [unit(p) for p in points]
+    faces = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2), (10, 7, 6),
+             (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5), (2, 4, 11), (6, 2, 10),
+             (8, 6, 7), (9, 8, 1)]
+    for _ in range(subdivisions):
+        middles, next_faces = {}, []
+
+        def middle(i, j):
+            key = (min(i, j), max(i, j))
+            if key not in middles:
+                points.append(unit(tuple(a + b for a, b in zip(points[i], points[j]))))
+                middles[key] = len(points) - 1
+            return middles[key]
+        for a, b, c in faces:
+            ab, bc, ca = middle(a, b), middle(b, c), middle(c, a)
+            next_faces += [(a, ab, ca), (b, bc, ab), (c, ca, bc), (ab, bc, ca)]
+        faces = next_faces
+    return [tuple(radius * c for c in p) for p in points], faces
+
+
+def drape_and_slope():
+    # A cloth of 16 x 16 cells of 5 cm dropped over a boulder (an OBJ mesh of 320 facets, radius 0.3 m, on the ground),
+    # and six balls rolling down a terrain of 15 x 6 cells beside it that falls from 0.9 m to the ground.
+    vertices, faces = icosphere(0.3, 2)
+    with open("samples/scenes/boulder.obj", "w") as f:
+        f.write("# A boulder: a geodesic sphere of radius 0.3 m, 320 facets. Written by tools/make-scene-samples.py.\n")
+        for v in vertices:
+            f.write("v %.9f %.9f %.9f\n" % v)
+        for t in faces:
+            f.write("f %d %d %d\n" % tuple(i + 1 for i in t))
+    n, h = 16, 0.05
+    cloth = [[round(-n * h / 2 + j * h, 6), 0.9, round(-n * h / 2 + i * h, 6)] for i in range(n + 1) for j in range(n + 1)]
+    cells = []
+    for i in range(n):
+        for j in range(n):
+            v = i * (n + 1) + j
+            cells += [[v, v + n + 1, v + 1], [v + 1, v + n + 1, v + n + 2]]
+    rows, columns, dx = 7, 16, 0.2
+    heights = [[round(0.9 * (1 - c / (columns - 1)) ** 2 + 0.03 * (r % 2), 6) for c in range(columns)] for r in range(rows)]
+    balls = [[1.3, 1.2, round(-0.45 + 0.18 * k, 6)] for k in range(6)]
+    return {
+        "integrator": {"name": "xpbd", "substeps": 20},
+        "dt": 1 / 60,
+        "duration": 4,
+        "objects": [
+            {"type": "cloth", "mesh": {"vertices": cloth, "triangles": cells}, "density": 0.2,
+             "stretch": {"modulus": 1000, "poisson": 0.3, "damping": 0.2}, "bending": {"rigidity": 0.0001},
+             "thickness": 0.02},
+            {"type": "particles", "positions": balls, "mass": 0.2, "radius": 0.05},
+        ],
+        "colliders": [
+            {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "friction": 0.5},
+            {"type": "mesh", "mesh": {"obj": "boulder.obj"}, "position": [0, 0.3, 0], "friction": 0.5},
+            {"type": "heightfield", "origin": [1.2, 0, -0.6], "cellSize": [dx, dx], "heights": heights, "friction": 0.1},
+        ],
+    }
+
+
 dump("samples/scenes/rope-bridge.json", [
     "A rope bridge: two ropes of 21 particles (2 kg each) joined by cables 5 % longer than their spacing, pinned at",
     "both ends 4 m apart; planks are rods across, diagonal springs brace it, and a 35 kg walker (343 N on each rope)",
@@ -153,3 +218,6 @@ dump("samples/scenes/ropes.json", [
     "Two ropes of 1 m: one held out horizontally by its first two points, with bending rigidity EI = 2.5 N m^2, which",
     "sags 4.9 cm, and one of springs without bending hanging from both ends. Written by tools/make-scene-samples.py.",
 ], ropes())
+dump("samples/scenes/drape-and-slope.json", [
+    "A cloth of 16 x 16 cells dropped over a boulder given as an OBJ mesh (boulder.obj, 320 facets) and six balls sliding",
+    "down a terrain (a height field) beside it. Written by tools/make-scene-samples.py."], drape_and_slope())

@@ -40,6 +40,8 @@ namespace ParticlePhysics.Benchmarks;
 /// <item><c>contacts [--sizes 1000,10000,100000] [--resolves 5] [--state DIR]</c>: the contact stage on settled piles,
 /// outside BenchmarkDotNet: what each pile holds, a checksum of the result, the fastest resolve; for callgrind
 /// (<see cref="ContactCosts"/>).</item>
+/// <item><c>colliders [--levels 3,4,5,6,7,8] [--steps 120] [--rays 100000]</c>: the contact stage of a 64 x 64 cloth
+/// draped on triangle meshes of 1,280 to 1,310,720 triangles, and a raycast against each (<see cref="ColliderCosts"/>).</item>
 /// <item><c>obj [--vertices 1000000] [--rounds 7]</c>: the OBJ reader's throughput in MB/s on a generated mesh
 /// (<see cref="ObjThroughput"/>).</item>
 /// <item><c>--quick</c> (before BenchmarkDotNet's arguments): small cloths, for CI.</item>
@@ -93,6 +95,11 @@ internal static class Program
         if (args.Length > 0 && args[0] == "costs")
         {
             return StepCosts.Run(args[1..]);
+        }
+
+        if (args.Length > 0 && args[0] == "colliders")
+        {
+            return ColliderCosts.Run(args[1..]);
         }
 
         if (args.Length > 0 && args[0] == "contacts")

@@ -25,9 +25,6 @@ namespace ParticlePhysics.Scenes;
 /// </example>
 public sealed class Scene
 {
-    /// <summary>The most colliders a scene may list (one contact set holds at most this many).</summary>
-    public const int MaxColliders = Contacts.ContactSet.MaxObstacles;
-
     private readonly List<SceneObject> _objects;
     private readonly List<SceneCollider> _colliders;
 
@@ -202,11 +199,6 @@ public sealed class Scene
             if (!kinds.Colliders.TryGetValue(type, out var kind))
             {
                 throw UnknownType(document, colliderReader, type, kinds, colliders: true);
-            }
-
-            if (colliders.Count == MaxColliders)
-            {
-                throw colliderReader.ObjectError($"one collider too many: a scene holds at most {MaxColliders}");
             }
 
             colliders.Add(kind.Read(colliderReader, new SceneReadContext(document.File, directory, (int)particles)));

@@ -15,7 +15,7 @@ internal abstract class ColliderKind : IColliderKind
 
     public SceneCollider Read(ObjectReader reader, SceneReadContext context)
     {
-        var shape = ReadShape(reader);
+        var shape = ReadShape(reader, context);
         var restitution = reader.Number("restitution", 0.0, ValueRule.Fraction, string.Empty);
         var friction = reader.Number("friction", 0.0, ValueRule.NonNegative, string.Empty);
         var velocity = reader.Vector("velocity", Vector3d.Zero, "m/s");
@@ -37,8 +37,8 @@ internal abstract class ColliderKind : IColliderKind
         return collider;
     }
 
-    /// <summary>Reads the shape's keys; returns how to make the obstacle from its restitution and friction.</summary>
-    protected abstract Func<double, double, Obstacle> ReadShape(ObjectReader reader);
+    /// <summary>Reads the shape's keys (files named relative to the scene's folder); returns how to make the obstacle from its restitution and friction.</summary>
+    protected abstract Func<double, double, Obstacle> ReadShape(ObjectReader reader, SceneReadContext context);
 
     private sealed class Collider : SceneCollider
     {
@@ -61,7 +61,7 @@ internal sealed class PlaneKind : ColliderKind
 {
     public override string Name => "plane";
 
-    protected override Func<double, double, Obstacle> ReadShape(ObjectReader reader)
+    protected override Func<double, double, Obstacle> ReadShape(ObjectReader reader, SceneReadContext context)
     {
         var point = reader.Vector("point", null, "m");
         var normal = reader.Vector("normal", null, "any length but 0");
@@ -79,7 +79,7 @@ internal sealed class SphereKind : ColliderKind
 {
     public override string Name => "sphere";
 
-    protected override Func<double, double, Obstacle> ReadShape(ObjectReader reader)
+    protected override Func<double, double, Obstacle> ReadShape(ObjectReader reader, SceneReadContext context)
     {
         var center = reader.Vector("center", null, "m");
         var radius = reader.Number("radius", null, ValueRule.Positive, "m");
@@ -92,7 +92,7 @@ internal sealed class CapsuleKind : ColliderKind
 {
     public override string Name => "capsule";
 
-    protected override Func<double, double, Obstacle> ReadShape(ObjectReader reader)
+    protected override Func<double, double, Obstacle> ReadShape(ObjectReader reader, SceneReadContext context)
     {
         var a = reader.Vector("a", null, "m");
         var b = reader.Vector("b", null, "m");
@@ -109,7 +109,7 @@ internal sealed class BoxKind : ColliderKind
 {
     public override string Name => "box";
 
-    protected override Func<double, double, Obstacle> ReadShape(ObjectReader reader)
+    protected override Func<double, double, Obstacle> ReadShape(ObjectReader reader, SceneReadContext context)
     {
         var center = reader.Vector("center", null, "m");
         var half = reader.Vector("halfExtents", null, "m");

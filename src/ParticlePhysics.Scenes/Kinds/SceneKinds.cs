@@ -43,8 +43,8 @@ internal sealed class SceneKinds
         kinds.Add(new SphereKind());
         kinds.Add(new CapsuleKind());
         kinds.Add(new BoxKind());
-        kinds.Add(NotBuiltYet.Collider("mesh", "colliders a game has"));
-        kinds.Add(NotBuiltYet.Collider("heightfield", "colliders a game has"));
+        kinds.Add(new MeshKind());
+        kinds.Add(new HeightFieldKind());
         return kinds;
     }
 

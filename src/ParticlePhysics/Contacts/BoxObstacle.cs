@@ -89,12 +89,31 @@ public sealed class BoxObstacle : Obstacle
     }
 
     /// <inheritdoc />
+    public override bool IsConvex => true;
+
+    /// <inheritdoc />
     public override void Translate(Vector3d offset) => Center = _center + offset;
 
-    private protected override ObstacleShape Describe(Vector3d offset) =>
+    /// <inheritdoc />
+    protected override ObstacleShape Describe(Vector3d offset) =>
         new(ObstacleKind.Box, _center + offset, _axisX, _axisY, _axisZ, _halfExtents, 0.0);
 
-    internal override double Distance(double x, double y, double z, out double nx, out double ny, out double nz)
+    /// <inheritdoc />
+    public override bool TryGetBounds(out Vector3d min, out Vector3d max)
+    {
+        // The box's reach along each world axis: the half extents projected, |u_k . e_c| h_k summed over its axes.
+        var h = _halfExtents;
+        var reach = new Vector3d(
+            (Math.Abs(_axisX.X) * h.X) + (Math.Abs(_axisY.X) * h.Y) + (Math.Abs(_axisZ.X) * h.Z),
+            (Math.Abs(_axisX.Y) * h.X) + (Math.Abs(_axisY.Y) * h.Y) + (Math.Abs(_axisZ.Y) * h.Z),
+            (Math.Abs(_axisX.Z) * h.X) + (Math.Abs(_axisY.Z) * h.Y) + (Math.Abs(_axisZ.Z) * h.Z));
+        min = _center - reach;
+        max = _center + reach;
+        return true;
+    }
+
+    /// <inheritdoc />
+    public override double Distance(double x, double y, double z, out double nx, out double ny, out double nz)
     {
         double dx = x - _center.X, dy = y - _center.Y, dz = z - _center.Z;
         var l0 = (dx * _axisX.X) + (dy * _axisX.Y) + (dz * _axisX.Z);

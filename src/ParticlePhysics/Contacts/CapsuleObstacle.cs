@@ -67,6 +67,9 @@ public sealed class CapsuleObstacle : Obstacle
     }
 
     /// <inheritdoc />
+    public override bool IsConvex => true;
+
+    /// <inheritdoc />
     public override void Translate(Vector3d offset)
     {
         var start = _start + offset;
@@ -92,7 +95,8 @@ public sealed class CapsuleObstacle : Obstacle
         }
     }
 
-    private protected override ObstacleShape Describe(Vector3d offset)
+    /// <inheritdoc />
+    protected override ObstacleShape Describe(Vector3d offset)
     {
         var axis = _end - _start;
         var length = axis.Length;
@@ -103,7 +107,17 @@ public sealed class CapsuleObstacle : Obstacle
             new Vector3d(0, 0.5 * length, 0), _radius);
     }
 
-    internal override double Distance(double x, double y, double z, out double nx, out double ny, out double nz)
+    /// <inheritdoc />
+    public override bool TryGetBounds(out Vector3d min, out Vector3d max)
+    {
+        var reach = new Vector3d(_radius, _radius, _radius);
+        min = new Vector3d(Math.Min(_start.X, _end.X), Math.Min(_start.Y, _end.Y), Math.Min(_start.Z, _end.Z)) - reach;
+        max = new Vector3d(Math.Max(_start.X, _end.X), Math.Max(_start.Y, _end.Y), Math.Max(_start.Z, _end.Z)) + reach;
+        return true;
+    }
+
+    /// <inheritdoc />
+    public override double Distance(double x, double y, double z, out double nx, out double ny, out double nz)
     {
         double ax = _end.X - _start.X, ay = _end.Y - _start.Y, az = _end.Z - _start.Z;
         double px = x - _start.X, py = y - _start.Y, pz = z - _start.Z;

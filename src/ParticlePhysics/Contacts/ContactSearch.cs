@@ -12,11 +12,13 @@ namespace ParticlePhysics.Contacts;
 /// Let phi(s) be the gap along the path (the signed distance to the obstacle grown by the radius, or the distance of
 /// two centres less the sum of the radii): the distance to a convex set is convex and 1-Lipschitz, and the path p
 /// bends by at most A (a bound on |p''|), so over the next u seconds
-/// phi(s + u) &gt;= phi(s) + phi'(s) u - A u^2 / 2. The first root of that lower bound,
+/// phi(s + u) &gt;= phi(s) + phi'(s) u - A u^2 / 2 (convexity bounds phi(p(s + u)) below by its tangent plane at p(s),
+/// |grad phi| = 1 bounds the path's departure from its tangent line, A u^2 / 2, to that much of the gap). The first root of that lower bound,
 /// u = 2 phi / (b + sqrt(b^2 + 2 A phi)) with b = -phi'(s) (or (sqrt(b^2 + 2 A phi) - b) / A when the gap is opening),
 /// is a step that cannot pass the first contact. It lands exactly on it for a parabola falling onto a plane (the bound
 /// is then the gap itself) and converges quadratically near any transversal contact, so a handful of steps suffice; a
-/// thin wall at 1000 m/s is found in one.
+/// thin wall at 1000 m/s is found in one. The obstacle computes the step (<see cref="Obstacle.SafeStep"/>): this bound
+/// for a convex shape, <see cref="LipschitzStep"/> for any other, the least of its triangles' bounds for a mesh.
 /// </para>
 /// <para>
 /// A contact is a gap at most <see cref="Tolerance"/> (1e-10 m, more far from the origin) while the gap is not opening
@@ -68,7 +70,7 @@ internal static class ContactSearch
                 return s;
             }
 
-            s += SafeStep(gap, rate, bend);
+            s += obstacle.SafeStep(qx, qy, qz, vx - wx, vy - wy, vz - wz, radius, gap, rate, bend, to - s);
             if (!(s <= to))
             {
                 return double.PositiveInfinity;
@@ -120,5 +122,22 @@ internal static class ContactSearch
         }
 
         return bend > 0.0 ? (root - b) / bend : double.PositiveInfinity;
+    }
+
+    /// <summary>
+    /// The step for a gap that is only 1-Lipschitz (not convex): along a path of speed at most <paramref name="speed"/>
+    /// relative to the shape and bend <paramref name="bend"/>, the point moves at most speed u + bend u^2 / 2 in u
+    /// seconds, so the gap stays above gap - speed u - bend u^2 / 2, whose first root is the step. Within
+    /// <see cref="Tolerance"/> of the surface (touching, and leaving since the search did not stop there) the local
+    /// tangent bound of <see cref="SafeStep"/> is taken instead, which the Lipschitz bound would hold at 0.
+    /// </summary>
+    public static double LipschitzStep(double gap, double rate, double speed, double bend)
+    {
+        if (!(gap > Tolerance))
+        {
+            return SafeStep(gap, rate, bend);
+        }
+
+        return 2.0 * gap / (speed + Math.Sqrt((speed * speed) + (2.0 * bend * gap)));
     }
 }

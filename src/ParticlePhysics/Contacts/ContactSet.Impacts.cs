@@ -3,7 +3,10 @@ using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Contacts;
 
-/// <summary>Stage 3 of <see cref="ContactSet.Resolve"/>: the impacts within the step, in time order.</summary>
+/// <summary>
+/// Stage 3 of <see cref="ContactSet.Resolve"/>: the impacts within the step, in time order, each changing the rest of its
+/// particles' paths (<see cref="ContactSearch"/> finds them, <see cref="ImpactQueue"/> orders them).
+/// </summary>
 public sealed partial class ContactSet
 {
     /// <summary>The most impacts one particle or pair may have in a step on average before the rest is left to the projection.</summary>
@@ -26,9 +29,10 @@ public sealed partial class ContactSet
         var n = context.Count;
         var inverseMasses = context.InverseMasses.ForReading();
         var radii = context.Radii.ForReading();
-        var budget = (long)ImpactsPerItem * (n + (long)_pairCount);
-        _queue.Reset((int)Math.Min(budget + n + _pairCount + 64, int.MaxValue));
-        if (_obstacles.Count == 0 && _pairCount == 0)
+        var pairs = _pairs.Count;
+        var budget = (long)ImpactsPerItem * (n + (long)pairs);
+        _queue.Reset((int)Math.Min(budget + n + pairs + 64, int.MaxValue));
+        if (_obstacles.Count == 0 && pairs == 0)
         {
             return;
         }
@@ -42,9 +46,9 @@ public sealed partial class ContactSet
             }
         }
 
-        for (var p = 0; p < _pairCount; p++)
+        for (var p = 0; p < pairs; p++)
         {
-            if (!_pairResting[p])
+            if (!_pairs.IsResting(p))
             {
                 QueuePairImpact(in context, p, 0.0, radii);
             }
@@ -57,7 +61,7 @@ public sealed partial class ContactSet
             if (second < 0)
             {
                 var i = first;
-                if (_epoch[i] != firstEpoch)
+                if (_paths.Version(i) != firstEpoch)
                 {
                     continue; // its path changed since: a newer entry is queued
                 }
@@ -74,9 +78,9 @@ public sealed partial class ContactSet
             }
             else
             {
-                var a = _pairFirst[first];
-                var b = _pairSecond[first];
-                if (_epoch[a] != firstEpoch || _epoch[b] != secondEpoch || _pairResting[first])
+                var a = _pairs.First[first];
+                var b = _pairs.Second[first];
+                if (_paths.Version(a) != firstEpoch || _paths.Version(b) != secondEpoch || _pairs.IsResting(first))
                 {
                     continue;
                 }
@@ -112,8 +116,10 @@ public sealed partial class ContactSet
             }
 
             var radius = Radius(radii, i);
-            for (var k = 0; k < _obstacles.Count; k++)
+            var candidates = ObstaclesNear(i, Read(x, i), TouchReach(radius), -1);
+            for (var c = 0; c < candidates; c++)
             {
+                var k = _candidates[c];
                 var obstacle = _obstacles[k];
                 var q = Read(x, i) - obstacle.OffsetAt(context.Time);
                 var gap = obstacle.Distance(q.X, q.Y, q.Z, out var nx, out var ny, out var nz) - radius;
@@ -126,10 +132,12 @@ public sealed partial class ContactSet
             }
         }
 
-        for (var p = 0; p < _pairCount; p++)
+        var first = _pairs.First;
+        var second = _pairs.Second;
+        for (var p = 0; p < first.Length; p++)
         {
-            var a = _pairFirst[p];
-            var b = _pairSecond[p];
+            var a = first[p];
+            var b = second[p];
             var reach = Radius(radii, a) + Radius(radii, b);
             _paths.Evaluate(a, 0.0, out var pa, out var va);
             _paths.Evaluate(b, 0.0, out var pb, out var vb);
@@ -152,12 +160,12 @@ public sealed partial class ContactSet
             QueueObstacleImpact(in context, i, s, radii);
         }
 
-        for (var k = _pairsOfStart[i]; k < _pairsOfStart[i + 1]; k++)
+        for (var k = _pairs.StartOf(i); k < _pairs.StartOf(i + 1); k++)
         {
             // A pair that rested at its last contact rests no longer once a bounce changed i's course: a ball hit in
             // a row of touching balls must pass the blow on (Newton's cradle), not have it absorbed by the separation.
-            var p = _pairsOf[k];
-            _pairResting[p] = false;
+            var p = _pairs.PairAt(k);
+            _pairs.ClearResting(p);
             QueuePairImpact(in context, p, s, radii);
         }
     }
@@ -167,9 +175,21 @@ public sealed partial class ContactSet
         var best = double.PositiveInfinity;
         var which = -1;
         var radius = Radius(radii, i);
-        for (var k = 0; k < _obstacles.Count; k++)
+
+        // The path from here to the end of the step stays within its chord's box grown by A L^2 / 8 (a cubic departs
+        // from its chord by at most that, A bounding |p''| over the stretch of length L): the obstacles out of that box
+        // grown by the radius cannot be touched.
+        var to = context.Dt;
+        _paths.Evaluate(i, from, out var a, out _);
+        _paths.Evaluate(i, to, out var b, out _);
+        var bulge = 0.125 * _paths.AccelerationBound(i, from, to) * (to - from) * (to - from);
+        var lo = new Vector3d(Math.Min(a.X, b.X), Math.Min(a.Y, b.Y), Math.Min(a.Z, b.Z));
+        var hi = new Vector3d(Math.Max(a.X, b.X), Math.Max(a.Y, b.Y), Math.Max(a.Z, b.Z));
+        var candidates = ObstaclesNear(i, lo, hi, TouchReach(radius) + bulge, -1);
+        for (var c = 0; c < candidates; c++)
         {
-            if ((_restingOn[i] & (1UL << k)) != 0)
+            var k = _candidates[c];
+            if (_resting.IsRestingOn(i, k))
             {
                 continue; // it rests there: the resting stage holds it
             }
@@ -184,18 +204,18 @@ public sealed partial class ContactSet
 
         if (which >= 0)
         {
-            _queue.Push(best, i, -1 - which, _epoch[i], 0);
+            _queue.Push(best, i, -1 - which, _paths.Version(i), 0);
         }
     }
 
     private void QueuePairImpact(in ConstraintContext context, int p, double from, Span<double> radii)
     {
-        var a = _pairFirst[p];
-        var b = _pairSecond[p];
+        var a = _pairs.First[p];
+        var b = _pairs.Second[p];
         var s = ContactSearch.FirstPairContact(_paths, a, b, Radius(radii, a) + Radius(radii, b), from, context.Dt);
         if (s <= context.Dt)
         {
-            _queue.Push(s, p, 0, _epoch[a], _epoch[b]);
+            _queue.Push(s, p, 0, _paths.Version(a), _paths.Version(b));
         }
     }
 
@@ -232,20 +252,13 @@ public sealed partial class ContactSet
         }
 
         Kick(in context, i, s, dv, bounce: !resting);
+        React(in context, i, k, dv, p, normal, context.Time + s);
         if (resting)
         {
-            if (_restObstacle[i] < 0)
-            {
-                _restObstacle[i] = k;
-                _restTime[i] = s;
-                _restTangent[i] = tangent;
-                _restPoint[i] = q;
-            }
-
-            _restingOn[i] |= 1UL << k;
+            _resting.Rest(i, k, s, tangent, q);
         }
 
-        Record(context.Time + s, i, k, true, Math.Max(u, 0.0), resting);
+        _log.Record(context.Time + s, i, k, true, Math.Max(u, 0.0), resting);
         return !resting;
     }
 
@@ -258,8 +271,8 @@ public sealed partial class ContactSet
     /// <returns>True for a bounce (see <see cref="ResolveObstacleImpact"/>).</returns>
     private bool ResolvePairImpact(in ConstraintContext context, int pair, double s)
     {
-        var a = _pairFirst[pair];
-        var b = _pairSecond[pair];
+        var a = _pairs.First[pair];
+        var b = _pairs.Second[pair];
         var inverseMasses = context.InverseMasses.ForReading();
         var wa = inverseMasses[a];
         var wb = inverseMasses[b];
@@ -290,10 +303,10 @@ public sealed partial class ContactSet
 
         if (resting)
         {
-            _pairResting[pair] = true;
+            _pairs.MarkResting(pair);
         }
 
-        Record(context.Time + s, a, b, false, Math.Max(u, 0.0), resting);
+        _log.Record(context.Time + s, a, b, false, Math.Max(u, 0.0), resting);
         return !resting;
     }
 
@@ -305,7 +318,7 @@ public sealed partial class ContactSet
     {
         if (bounce)
         {
-            _epoch[i]++;
+            _paths.Bounce(i);
         }
 
         if (dv == Vector3d.Zero)

@@ -38,25 +38,13 @@ namespace ParticlePhysics.Contacts;
 /// </remarks>
 public sealed partial class ContactSet
 {
-    // The contacts of the last Project, for SolveVelocities: kind (obstacle index >= 0, or -1 for a pair), particles,
-    // normal, normal correction |C| and normal velocity before the solve.
-    private int[] _substepKind = Array.Empty<int>();
-    private int[] _substepFirst = Array.Empty<int>();
-    private int[] _substepSecond = Array.Empty<int>();
-    private Vector3d[] _substepNormal = Array.Empty<Vector3d>();
-    private double[] _substepDepth = Array.Empty<double>();
-    private double[] _substepApproach = Array.Empty<double>();
-    private int _substepCount;
-    private double _substepEnd;
-
     /// <inheritdoc />
     public void Project(in ConstraintContext context)
     {
         var n = context.Count;
         EnsureCapacity(n);
-        _substepCount = 0;
-        _impactCount = 0;
-        _pairCount = 0; // this substep's pairs, none when collisions are off (not those of an earlier step)
+        _substep.Clear();
+        _log.Clear(); // this substep's contacts and pairs, none when collisions are off (not those of an earlier step)
         var x = context.Positions;
         var v = context.Velocities;
         var previous = context.StartPositions.ForReading();
@@ -64,19 +52,25 @@ public sealed partial class ContactSet
         var radii = context.Radii.ForReading();
         var h = context.Dt;
         var end = context.Time + h;
-        _substepEnd = end;
+        _substep.End = end;
+        if (!_bracketed)
+        {
+            _reactions.Clear(_obstacles.Count);
+        }
+
+        UpdateObstacleBoxes(context.Time, end);
         if (ParticleCollisions)
         {
             var swept = MarkFastParticles(n, x, previous, radii);
             var pairs = FindRestingPairs(n, x, previous, radii, swept);
-            _pairCount = pairs;
+            _log.CandidatePairs = pairs;
             var first = _restingGrid.First.ForReading();
             var second = _restingGrid.Second.ForReading();
             for (var p = 0; p < pairs; p++)
             {
                 var a = first[p];
                 var b = second[p];
-                var depth = swept && (_fast[a] || _fast[b])
+                var depth = swept && (_boxes.Fast[a] || _boxes.Fast[b])
                     ? SeparateSweptPositions(in context, a, b, radii, out var normal)
                     : SeparatePositions(in context, a, b, radii, out normal);
                 if (depth > 0.0)
@@ -98,9 +92,13 @@ public sealed partial class ContactSet
                 continue;
             }
 
+            // The obstacles near its straight move, in index order; a projection moves it, so those after the one that
+            // moved it are asked again from its new place (as the loop over every obstacle would meet them).
             var radius = Radius(radii, i);
-            for (var k = 0; k < _obstacles.Count; k++)
+            var candidates = ObstaclesNear(i, Read(previous, i), Read(x, i), TouchReach(radius), -1);
+            for (var c = 0; c < candidates; c++)
             {
+                var k = _candidates[c];
                 var obstacle = _obstacles[k];
                 var position = Read(x, i);
                 var q = position - obstacle.OffsetAt(end);
@@ -138,8 +136,12 @@ public sealed partial class ContactSet
                     position -= tangential;
                 }
 
+                // The velocity the integrator takes from the positions changes by this push over h: an impulse m dx / h.
+                React(in context, i, k, (position - Read(x, i)) / h, position, normal, end);
                 Write(x, i, position);
                 AddSubstepContact(k, i, -1, normal, depth, Vector3d.Dot(Read(v, i) - obstacle.Velocity, normal));
+                candidates = ObstaclesNear(i, Read(previous, i), position, TouchReach(radius), k);
+                c = -1;
             }
         }
     }
@@ -150,12 +152,12 @@ public sealed partial class ContactSet
         var v = context.Velocities;
         var inverseMasses = context.InverseMasses.ForReading();
         var h = context.Dt;
-        CountContacts(_substepCount);
-        for (var c = 0; c < _substepCount; c++)
+        CountContacts(_substep.Count);
+        for (var c = 0; c < _substep.Count; c++)
         {
-            var k = _substepKind[c];
-            var normal = _substepNormal[c];
-            var a = _substepFirst[c];
+            var k = _substep.Kind(c);
+            var normal = _substep.Normal(c);
+            var a = _substep.First(c);
             double e, mu, wa, wb;
             Vector3d relative;
             if (k >= 0)
@@ -172,8 +174,8 @@ public sealed partial class ContactSet
                 e = _particleRestitution;
                 mu = _particleFriction;
                 wa = inverseMasses[a];
-                wb = inverseMasses[_substepSecond[c]];
-                relative = Read(v, a) - Read(v, _substepSecond[c]);
+                wb = inverseMasses[_substep.Second(c)];
+                relative = Read(v, a) - Read(v, _substep.Second(c));
             }
 
             var w = wa + wb;
@@ -189,16 +191,21 @@ public sealed partial class ContactSet
             var change = Vector3d.Zero;
             if (speed > 0.0)
             {
-                change -= (Math.Min(mu * _substepDepth[c] / h, speed) / speed) * tangent;
+                change -= (Math.Min(mu * _substep.Depth(c) / h, speed) / speed) * tangent;
             }
 
-            var approach = _substepApproach[c];
+            var approach = _substep.Approach(c);
             var rebound = approach < 0.0 && e * -approach > _restingSpeed ? -e * approach : 0.0;
             change += (rebound - vn) * normal;
             Write(v, a, Read(v, a) + ((wa / w) * change));
+            if (k >= 0)
+            {
+                React(in context, a, k, change, Read(context.Positions, a), normal, context.Time + h);
+            }
+
             if (k < 0)
             {
-                var b = _substepSecond[c];
+                var b = _substep.Second(c);
                 Write(v, b, Read(v, b) - ((wb / w) * change));
             }
         }
@@ -242,7 +249,7 @@ public sealed partial class ContactSet
             var squared = (dx * dx) + (dy * dy) + (dz * dz);
             var radius = Radius(radii, i);
             var fast = squared > 0.0 && !(squared < radius * radius);
-            _fast[i] = fast;
+            _boxes.Fast[i] = fast;
             any |= fast;
         }
 
@@ -321,7 +328,7 @@ public sealed partial class ContactSet
                 return s < h;
             }
 
-            s += ContactSearch.SafeStep(gap, rate, 0.0);
+            s += obstacle.SafeStep(q.X, q.Y, q.Z, velocity.X, velocity.Y, velocity.Z, radius, gap, rate, 0.0, h - s);
             if (!(s < h))
             {
                 return false;
@@ -333,29 +340,43 @@ public sealed partial class ContactSet
 
     private void AddSubstepContact(int kind, int first, int second, Vector3d normal, double depth, double approach)
     {
-        if (_substepCount == _substepKind.Length)
-        {
-            var capacity = Math.Max(64, 2 * _substepKind.Length);
-            Array.Resize(ref _substepKind, capacity);
-            Array.Resize(ref _substepFirst, capacity);
-            Array.Resize(ref _substepSecond, capacity);
-            Array.Resize(ref _substepNormal, capacity);
-            Array.Resize(ref _substepDepth, capacity);
-            Array.Resize(ref _substepApproach, capacity);
-        }
-
         // The log of impacts: under substeps, those of the last substep (its end as their time), approaching or resting.
         var e = kind >= 0 ? _obstacles[kind].Restitution : _particleRestitution;
         var u = Math.Max(-approach, 0.0);
-        Record(_substepEnd, first, kind >= 0 ? kind : second, kind >= 0, u, !(e * u > _restingSpeed));
-        _impactCount--; // Record counted it; the count below is the substep's contacts
-        _substepKind[_substepCount] = kind;
-        _substepFirst[_substepCount] = first;
-        _substepSecond[_substepCount] = second;
-        _substepNormal[_substepCount] = normal;
-        _substepDepth[_substepCount] = depth;
-        _substepApproach[_substepCount] = approach;
-        _substepCount++;
-        _impactCount++;
+        _log.Record(_substep.End, first, kind >= 0 ? kind : second, kind >= 0, u, !(e * u > _restingSpeed));
+        _substep.Add(kind, first, second, normal, depth, approach);
+    }
+
+    /// <summary>
+    /// The pairs whose spheres, grown by a quarter of their radius, overlap at the end positions; with
+    /// <paramref name="swept"/>, a particle marked fast has a box over its whole straight move from
+    /// <paramref name="previous"/> (a slow one moved less than its radius, which the quarter radius more covers).
+    /// </summary>
+    private int FindRestingPairs(int n, Span<double> x, Span<double> previous, Span<double> radii, bool swept)
+    {
+        var min = _boxes.Min;
+        var max = _boxes.Max;
+        for (var i = 0; i < n; i++)
+        {
+            var grow = 1.25 * Radius(radii, i);
+            var fast = swept && _boxes.Fast[i];
+            for (var c = 0; c < 3; c++)
+            {
+                var end = x[(3 * i) + c];
+                var start = fast ? previous[(3 * i) + c] : end;
+                min[(3 * i) + c] = Math.Min(start, end) - grow;
+                max[(3 * i) + c] = Math.Max(start, end) + grow;
+            }
+        }
+
+        var started = BroadPhaseStart();
+        if (!_restingGrid.TryFindPairs(min, max, n, BroadPhaseFilter(), _maxCandidatePairs))
+        {
+            RefuseCandidatePairs(n);
+        }
+
+        BroadPhaseEnd(started, _restingGrid.PairCount);
+
+        return _restingGrid.PairCount;
     }
 }

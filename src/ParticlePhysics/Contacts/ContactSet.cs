@@ -37,9 +37,6 @@ namespace ParticlePhysics.Contacts;
 /// </remarks>
 public sealed partial class ContactSet : IStatefulConstraintSet
 {
-    /// <summary>The most obstacles one set holds (each resting particle keeps the ones it rests on as bits of a mask).</summary>
-    public const int MaxObstacles = 64;
-
     /// <summary>The most impacts <see cref="Impacts"/> keeps per step (<see cref="ImpactCount"/> counts them all).</summary>
     public const int MaxRecordedImpacts = 4096;
 
@@ -49,53 +46,36 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     /// <summary>The default, and the largest allowed, <see cref="MaxCandidatePairs"/>: 2^26 = 67,108,864.</summary>
     public const int DefaultMaxCandidatePairs = SpatialHashGrid.MaxPairs;
 
+    // Settings.
     private readonly List<Obstacle> _obstacles = new();
-    private readonly ParticlePaths _paths = new();
-    private readonly ImpactQueue _queue = new();
-    private readonly SpatialHashGrid _sweptGrid = new();
-    private readonly SpatialHashGrid _restingGrid = new();
-    private readonly ContactImpact[] _impacts = new ContactImpact[MaxRecordedImpacts];
-    private ContactImpact[] _savedImpacts = Array.Empty<ContactImpact>(); // the log as it was before a step (BeginStep)
-    private int _savedImpactCount;
-    private int _savedPairCount;
     private double _restingSpeed = DefaultRestingSpeed;
     private double _particleRestitution;
     private double _particleFriction;
     private int _projectionIterations = 16;
     private int _maxCandidatePairs = DefaultMaxCandidatePairs;
-    private int _impactCount;
+
+    // The state of a step, a type per job, in the order of the stages (docs/architecture.md, "Contacts"): the paths
+    // (1), the broad phase's boxes, grids and pairs (2), the queue of impacts (3), who rests on what (4), the
+    // separation's lists (5), the substeps' contacts, and what the last step shows.
+    private readonly ParticlePaths _paths = new();
+    private readonly ParticleBoxes _boxes = new();
+    private readonly SpatialHashGrid _sweptGrid = new();
+    private readonly SpatialHashGrid _restingGrid = new();
+    private readonly CandidatePairs _pairs = new();
+    private readonly ImpactQueue _queue = new();
+    private readonly RestingContacts _resting = new();
+    private readonly ObstacleContactList _near = new();
+    private readonly ShockOrder _shock = new();
+    private readonly SubstepContacts _substep = new();
+    private readonly ContactLog _log = new(MaxRecordedImpacts);
+    private readonly ObstacleBroadPhase _colliders = new();
+    private readonly ColliderReactions _reactions = new();
+    private bool _bracketed;
+    private readonly LayeredPairFilter _layered = new();
+    private int[] _candidates = Array.Empty<int>();
+    private CollisionFilter[] _particleFilters = Array.Empty<CollisionFilter>();
+    private bool _anyParticleFilter;
     private int _capacity = -1;
-
-    // Per particle: the epoch of its path (bumped by every impulse), the obstacles it rests on (a bit mask), the first
-    // of them with the time it came to rest, its tangential velocity and its place relative to the obstacle then; the
-    // swept box for the broad phase.
-    private int[] _epoch = Array.Empty<int>();
-    private ulong[] _restingOn = Array.Empty<ulong>();
-    private int[] _restObstacle = Array.Empty<int>();
-    private double[] _restTime = Array.Empty<double>();
-    private Vector3d[] _restTangent = Array.Empty<Vector3d>();
-    private Vector3d[] _restPoint = Array.Empty<Vector3d>();
-    private double[] _boxMin = Array.Empty<double>();
-    private double[] _boxMax = Array.Empty<double>();
-    private double[] _sweep = Array.Empty<double>();
-    private bool[] _fast = Array.Empty<bool>(); // under substeps: moved its radius or more in the substep
-
-    // The candidate pairs of this step (from the swept grid), whether each came to rest, and each particle's pairs (CSR).
-    private int[] _pairFirst = Array.Empty<int>();
-    private int[] _pairSecond = Array.Empty<int>();
-    private bool[] _pairResting = Array.Empty<bool>();
-    private int[] _pairsOfStart = Array.Empty<int>();
-    private int[] _pairsOf = Array.Empty<int>();
-    private int _pairCount;
-
-    // The separation stage's lists: particles near an obstacle, and the shock pass's ranks and orders.
-    private int[] _nearParticle = Array.Empty<int>();
-    private int[] _nearObstacle = Array.Empty<int>();
-    private int[] _rank = Array.Empty<int>();
-    private int[] _frontier = Array.Empty<int>();
-    private int[] _rankedStart = Array.Empty<int>();
-    private int[] _rankedPairs = Array.Empty<int>();
-    private int[] _pairsNear = Array.Empty<int>();
 
     /// <summary>The obstacles, in the order they were added (an obstacle's index is its place here).</summary>
     public IReadOnlyList<Obstacle> Obstacles => _obstacles;
@@ -186,47 +166,63 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     }
 
     /// <summary>The number of impacts the last step (or substep) resolved.</summary>
-    public int ImpactCount => _impactCount;
+    public int ImpactCount => _log.Count;
 
     /// <summary>
     /// The impacts of the last step, in time order (the first <see cref="MaxRecordedImpacts"/>); valid until the next
     /// step. Under the position-based integrator, the contacts of its last substep, timed at that substep's end.
     /// </summary>
-    public ReadOnlySpan<ContactImpact> Impacts => _impacts.AsSpan(0, Math.Min(_impactCount, MaxRecordedImpacts));
+    public ReadOnlySpan<ContactImpact> Impacts => _log.Impacts;
 
     /// <summary>The number of particle pairs the broad phase gave the last step.</summary>
-    public int CandidatePairCount => _pairCount;
+    public int CandidatePairCount => _log.CandidatePairs;
 
     /// <inheritdoc />
-    /// <remarks>Keeps the impact log aside (a copy of the impacts it holds, allocated once).</remarks>
+    /// <remarks>Keeps the impact log and the reactions aside (copies allocated once), and starts the reactions from zero.</remarks>
     public void BeginStep()
     {
-        if (_savedImpacts.Length == 0)
-        {
-            _savedImpacts = new ContactImpact[MaxRecordedImpacts];
-        }
-
-        _savedImpactCount = _impactCount;
-        _savedPairCount = _pairCount;
-        Impacts.CopyTo(_savedImpacts);
+        _log.Save();
+        _reactions.Save();
+        _reactions.Clear(_obstacles.Count);
+        _bracketed = true;
     }
 
     /// <inheritdoc />
-    public void CommitStep()
-    {
-    }
+    public void CommitStep() => _bracketed = false;
 
     /// <inheritdoc />
-    /// <remarks>The impact log, its count and the candidate pairs' count are those of the last committed step again.</remarks>
+    /// <remarks>The impact log, its count, the candidate pairs' count and the reactions are those of the last committed step again.</remarks>
     public void DiscardStep()
     {
-        _impactCount = _savedImpactCount;
-        _pairCount = _savedPairCount;
-        _savedImpacts.AsSpan(0, Math.Min(_impactCount, MaxRecordedImpacts)).CopyTo(_impacts);
+        _log.Restore();
+        _reactions.Restore();
+        _bracketed = false;
+    }
+
+    /// <summary>
+    /// What obstacle <paramref name="obstacle"/> received from the particles over the last step (over a
+    /// <see cref="Driver.FixedTimestepDriver"/>'s frame, its steps together): the total impulse and the angular impulse
+    /// about its <see cref="Obstacle.ReactionPoint"/>, from every impact, resting contact, friction and separation
+    /// (under the position-based integrator, m dx / h of each projection and m dv of each velocity pass), so that
+    /// a host that moves the obstacle as a body by them conserves the momentum of the two together. Zero for an
+    /// obstacle added since. Allocates nothing.
+    /// </summary>
+    /// <exception cref="ArgumentException">The obstacle is not in the set.</exception>
+    public ColliderReaction ReactionOf(Obstacle obstacle)
+    {
+        Guard.NotNull(obstacle, nameof(obstacle));
+        var k = _obstacles.IndexOf(obstacle);
+        if (k < 0)
+        {
+            throw new ArgumentException("This obstacle is not in the contact set.", nameof(obstacle));
+        }
+
+        return _reactions.Of(k);
     }
 
     /// <summary>Adds an obstacle; it acts from the next step on.</summary>
-    /// <exception cref="ArgumentException">It is already in the set, or the set holds <see cref="MaxObstacles"/>.</exception>
+    /// <remarks>Any number: a broad phase over the obstacles' boxes (<see cref="Obstacle.TryGetBounds"/>) tests each particle only against those near it.</remarks>
+    /// <exception cref="ArgumentException">It is already in the set.</exception>
     public void Add(Obstacle obstacle)
     {
         Guard.NotNull(obstacle, nameof(obstacle));
@@ -235,17 +231,58 @@ public sealed partial class ContactSet : IStatefulConstraintSet
             throw new ArgumentException("This obstacle is already in the contact set.", nameof(obstacle));
         }
 
-        if (_obstacles.Count == MaxObstacles)
-        {
-            throw new ArgumentException(
-                $"A contact set holds at most {MaxObstacles} obstacles; add another set for more.", nameof(obstacle));
-        }
-
         _obstacles.Add(obstacle);
+        _reactions.Clear(_obstacles.Count);
     }
 
     /// <summary>Removes an obstacle; returns false when it was not in the set. The indices of those after it shift down.</summary>
-    public bool Remove(Obstacle obstacle) => _obstacles.Remove(obstacle);
+    /// <remarks>The reactions of the last step start again from zero, since the indices moved.</remarks>
+    public bool Remove(Obstacle obstacle)
+    {
+        var removed = _obstacles.Remove(obstacle);
+        _reactions.Clear(_obstacles.Count);
+        return removed;
+    }
+
+    /// <summary>
+    /// Puts the particles <paramref name="first"/> to <paramref name="first"/> + <paramref name="count"/> - 1 (a cloth,
+    /// a rope, a body) under <paramref name="filter"/>: they meet an obstacle, or another particle, only when the two
+    /// filters accept each other (<see cref="CollisionFilter"/>). Particles never set have the default, layer 1 and
+    /// every layer; indices past the world's particles apply to the particles added there later.
+    /// </summary>
+    /// <exception cref="ArgumentOutOfRangeException"><paramref name="first"/> or <paramref name="count"/> is negative, or their sum passes <see cref="ParticleWorld.MaxParticles"/>.</exception>
+    public void SetParticleFilter(int first, int count, CollisionFilter filter)
+    {
+        if (first < 0 || first > ParticleWorld.MaxParticles)
+        {
+            throw new ArgumentOutOfRangeException(nameof(first), first, $"first must be a particle index from 0 to {ParticleWorld.MaxParticles}; got {first}.");
+        }
+
+        if (count < 0 || count > ParticleWorld.MaxParticles - first)
+        {
+            throw new ArgumentOutOfRangeException(nameof(count), count, $"count must be from 0 to {ParticleWorld.MaxParticles - first} (first + count at most {ParticleWorld.MaxParticles}); got {count}.");
+        }
+
+        if (_particleFilters.Length < first + count)
+        {
+            Array.Resize(ref _particleFilters, Math.Max(first + count, 2 * _particleFilters.Length));
+            _layered.Use(_particleFilters);
+        }
+
+        _particleFilters.AsSpan(first, count).Fill(filter);
+        _anyParticleFilter |= filter != CollisionFilter.Default;
+    }
+
+    /// <summary>The filter of particle <paramref name="particle"/> (<see cref="SetParticleFilter"/>; the default if never set).</summary>
+    public CollisionFilter GetParticleFilter(int particle)
+    {
+        if (particle < 0)
+        {
+            throw new ArgumentOutOfRangeException(nameof(particle), particle, $"particle must be an index >= 0; got {particle}.");
+        }
+
+        return ParticleFilter(particle);
+    }
 
     /// <inheritdoc />
     /// <remarks>The stages listed on the class; the end state is corrected in place.</remarks>
@@ -254,35 +291,28 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     {
         var n = context.Count;
         EnsureCapacity(n);
-        _impactCount = 0;
-        _pairCount = 0;
-        var duration = context.Dt;
-        var x0 = context.StartPositions.ForReading();
-        var v0 = context.StartVelocities.ForReading();
-        var x1 = context.Positions;
-        var v1 = context.Velocities;
-        var inverseMasses = context.InverseMasses.ForReading();
-        var radii = context.Radii.ForReading();
-        for (var i = 0; i < n; i++)
+        _log.Clear();
+        _pairs.Clear();
+        if (!_bracketed)
         {
-            _paths.SetHermite(i, Read(x0, i), Read(v0, i), Read(x1, i), Read(v1, i), duration);
-            _epoch[i] = 0;
-            _restingOn[i] = 0;
-            _restObstacle[i] = -1;
+            _reactions.Clear(_obstacles.Count); // called outside a world's step: this call's reactions alone
         }
 
+        UpdateObstacleBoxes(context.Time, context.Time + context.Dt);
+        SetPaths(in context);
+        _resting.Clear(n);
         if (ParticleCollisions)
         {
-            FindSweptPairs(n, duration, x0, x1, inverseMasses, radii);
+            FindSweptPairs(in context);
         }
 
-        // Built every step, empty when collisions are off: the impact stage reads each particle's pairs through these
-        // lists, and lists left from an earlier step would collide pairs this step does not have.
-        IndexPairsByParticle(n);
+        // Indexed every step, empty when collisions are off: the impact stage reads each particle's pairs through the
+        // index, and an index left from an earlier step would collide pairs this step does not have.
+        _pairs.IndexByParticle(n);
         ResolveImpacts(in context);
         ApplyRestingFriction(in context);
         Separate(in context, _projectionIterations);
-        CountContacts(_impactCount);
+        CountContacts(_log.Count);
     }
 
     private void EnsureCapacity(int n)
@@ -293,124 +323,23 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         }
 
         _paths.EnsureCapacity(n);
-        _epoch = new int[n];
-        _restingOn = new ulong[n];
-        _restObstacle = new int[n];
-        _restTime = new double[n];
-        _restTangent = new Vector3d[n];
-        _restPoint = new Vector3d[n];
-        _boxMin = new double[3 * n];
-        _boxMax = new double[3 * n];
-        _sweep = new double[n];
-        _fast = new bool[n];
-        _pairsOfStart = new int[n + 1];
+        _boxes.EnsureCapacity(n);
+        _pairs.EnsureParticles(n);
+        _resting.EnsureCapacity(n);
         _capacity = n;
     }
 
-    /// <summary>The candidate pairs of the step: swept boxes of start and end, grown by the radius and the path's bulge.</summary>
-    private void FindSweptPairs(
-        int n, double duration, Span<double> x0, Span<double> x1, Span<double> inverseMasses, Span<double> radii)
+    /// <summary>Stage 1: each particle's path within the step, the cubic through its start and end (<see cref="ParticlePaths"/>).</summary>
+    private void SetPaths(in ConstraintContext context)
     {
-        for (var i = 0; i < n; i++)
+        var x0 = context.StartPositions.ForReading();
+        var v0 = context.StartVelocities.ForReading();
+        var x1 = context.Positions;
+        var v1 = context.Velocities;
+        for (var i = 0; i < context.Count; i++)
         {
-            // A cubic departs from its chord by at most A T^2 / 8 (A: the bound on its second derivative); the quarter
-            // radius more keeps the pairs that nearly touch at the end for the separation stage.
-            var bulge = 0.125 * _paths.AccelerationBound(i, 0.0, duration) * duration * duration;
-            var grow = (1.25 * Radius(radii, i)) + bulge;
-            _sweep[i] = Distance(x0, i, x1, i) + bulge;
-            for (var c = 0; c < 3; c++)
-            {
-                var a = x0[(3 * i) + c];
-                var b = x1[(3 * i) + c];
-                _boxMin[(3 * i) + c] = Math.Min(a, b) - grow;
-                _boxMax[(3 * i) + c] = Math.Max(a, b) + grow;
-            }
+            _paths.SetHermite(i, Read(x0, i), Read(v0, i), Read(x1, i), Read(v1, i), context.Dt);
         }
-
-        var started = BroadPhaseStart();
-        if (!_sweptGrid.TryFindPairs(_boxMin, _boxMax, n, PairFilter, _maxCandidatePairs))
-        {
-            RefuseCandidatePairs(n);
-        }
-
-        BroadPhaseEnd(started, _sweptGrid.PairCount);
-
-        var first = _sweptGrid.First.ForReading();
-        var second = _sweptGrid.Second.ForReading();
-        var found = _sweptGrid.PairCount;
-        if (_pairFirst.Length < found)
-        {
-            var capacity = Math.Max(found, (int)Math.Min(2L * _pairFirst.Length, DefaultMaxCandidatePairs));
-            _pairFirst = new int[capacity];
-            _pairSecond = new int[capacity];
-            _pairResting = new bool[capacity];
-            _pairsOf = new int[2 * capacity];
-        }
-
-        var count = 0;
-        for (var p = 0; p < found; p++)
-        {
-            var i = first[p];
-            var j = second[p];
-            if ((inverseMasses[i] == 0.0 && inverseMasses[j] == 0.0) || !MayMeet(i, j, x0, radii))
-            {
-                continue; // two pinned particles cannot move; two swept spheres too far apart cannot meet
-            }
-
-            _pairFirst[count] = i;
-            _pairSecond[count] = j;
-            _pairResting[count] = false;
-            count++;
-        }
-
-        _pairCount = count;
-    }
-
-    /// <summary>Each particle's pairs among the step's candidate pairs (none when collisions are off), in pair order (a counting sort of both ends).</summary>
-    private void IndexPairsByParticle(int n)
-    {
-        var count = _pairCount;
-        Array.Clear(_pairsOfStart, 0, n + 1);
-        for (var p = 0; p < count; p++)
-        {
-            _pairsOfStart[_pairFirst[p] + 1]++;
-            _pairsOfStart[_pairSecond[p] + 1]++;
-        }
-
-        for (var i = 0; i < n; i++)
-        {
-            _pairsOfStart[i + 1] += _pairsOfStart[i];
-        }
-
-        for (var p = 0; p < count; p++)
-        {
-            _pairsOf[_pairsOfStart[_pairFirst[p]]++] = p;
-            _pairsOf[_pairsOfStart[_pairSecond[p]]++] = p;
-        }
-
-        for (var i = n; i > 0; i--)
-        {
-            _pairsOfStart[i] = _pairsOfStart[i - 1];
-        }
-
-        _pairsOfStart[0] = 0;
-    }
-
-    /// <summary>
-    /// The narrow test after the boxes, whose corners let through neighbours up to sqrt(3) times too far: a centre
-    /// stays within its sweep (chord plus bulge) of where it started, so two particles can come within 1.25 (r_i + r_j)
-    /// of each other only if their start distance is at most that plus both sweeps.
-    /// </summary>
-    private bool MayMeet(int i, int j, Span<double> x0, Span<double> radii) =>
-        Distance(x0, i, x0, j) <= (1.25 * (Radius(radii, i) + Radius(radii, j))) + _sweep[i] + _sweep[j];
-
-    private void RefuseCandidatePairs(int n)
-    {
-        _pairCount = 0;
-        throw new InvalidOperationException(
-            $"The contact set found more than MaxCandidatePairs = {_maxCandidatePairs} candidate pairs among {n} particles "
-            + "(particles heaped within reach of each other): the search stopped there and the step is refused, with "
-            + $"nothing changed. Spread the particles out, or raise MaxCandidatePairs (at most {DefaultMaxCandidatePairs}, about 40 bytes a pair).");
     }
 
     private static double Distance(Span<double> a, int i, Span<double> b, int j)
@@ -436,21 +365,27 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         values[(3 * i) + 2] = value.Z;
     }
 
+    /// <summary>
+    /// Books on obstacle k the reaction to particle i's velocity change <paramref name="dv"/> at time
+    /// <paramref name="time"/>: the impulse -m dv at the contact point, the centre less the radius along the normal.
+    /// </summary>
+    private void React(in ConstraintContext context, int i, int k, Vector3d dv, Vector3d centre, Vector3d normal, double time)
+    {
+        if (dv == Vector3d.Zero)
+        {
+            return;
+        }
+
+        var obstacle = _obstacles[k];
+        var point = centre - (Radius(context.Radii.ForReading(), i) * normal);
+        _reactions.Add(k, -context.Masses.ForReading()[i] * dv, point, obstacle.ReactionPoint + obstacle.OffsetAt(time));
+    }
+
     private static void CheckRestitution(double value, string name)
     {
         if (!(value >= 0.0 && value <= 1.0))
         {
             throw new ArgumentOutOfRangeException(name, value, $"{name} must be from 0 to 1; got {Guard.Format(value)}.");
         }
-    }
-
-    private void Record(double time, int particle, int other, bool withObstacle, double speed, bool resting)
-    {
-        if (_impactCount < MaxRecordedImpacts)
-        {
-            _impacts[_impactCount] = new ContactImpact(time, particle, other, withObstacle, speed, resting);
-        }
-
-        _impactCount++;
     }
 }

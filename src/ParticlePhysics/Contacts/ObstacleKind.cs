@@ -17,4 +17,19 @@ public enum ObstacleKind
 
     /// <summary>An oriented box: <see cref="ObstacleShape.HalfExtents"/> along the three axes around the centre.</summary>
     Box,
+
+    /// <summary>
+    /// A triangle mesh: <see cref="ObstacleShape.Vertices"/> and <see cref="ObstacleShape.Triangles"/> in the mesh's own
+    /// frame, placed by the centre and the axes.
+    /// </summary>
+    Mesh,
+
+    /// <summary>
+    /// A height field: its grid as <see cref="ObstacleShape.Vertices"/> and two <see cref="ObstacleShape.Triangles"/> per
+    /// cell (the surface itself), in the field's frame, whose origin is the centre (world axes).
+    /// </summary>
+    HeightField,
+
+    /// <summary>A shape of a user's own: a renderer knows only its bounds, <see cref="ObstacleShape.HalfExtents"/> around the centre (zero when unbounded).</summary>
+    Custom,
 }

@@ -20,11 +20,17 @@ namespace ParticlePhysics.Contacts;
 /// added to its slope: p(s + u) = p(s) + (p'(s) + dv) u + (c2 + 3 c3 (s - o)) u^2 + c3 u^3, exact for constant forces
 /// and first order in the step otherwise. Each particle keeps 12 coefficients and the time o they are expanded about.
 /// </para>
+/// <para>
+/// Each path also has a version, bumped by a bounce (<see cref="Bounce"/>): an impact found on an older version of a
+/// path is stale (<see cref="ImpactQueue"/> skips it). A resting impulse changes the path by less than the resting
+/// speed and keeps its version, so what was queued before it stands.
+/// </para>
 /// </remarks>
 internal sealed class ParticlePaths
 {
     private double[] _origin = Array.Empty<double>();
     private double[] _coefficients = Array.Empty<double>();
+    private int[] _version = Array.Empty<int>();
 
     /// <summary>Makes room for <paramref name="count"/> particles (allocates only when the count grows).</summary>
     public void EnsureCapacity(int count)
@@ -33,6 +39,7 @@ internal sealed class ParticlePaths
         {
             _origin = new double[count];
             _coefficients = new double[12 * count];
+            _version = new int[count];
         }
     }
 
@@ -43,8 +50,15 @@ internal sealed class ParticlePaths
         var c2 = ((3.0 * chord) - (2.0 * v0) - v1) / duration;
         var c3 = (v0 + v1 - (2.0 * chord)) / (duration * duration);
         _origin[i] = 0.0;
+        _version[i] = 0;
         Write(i, x0, v0, c2, c3);
     }
+
+    /// <summary>The version of particle <paramref name="i"/>'s path: 0 when set, one more after each bounce.</summary>
+    public int Version(int i) => _version[i];
+
+    /// <summary>Particle <paramref name="i"/> bounced: impacts found on its path before are stale.</summary>
+    public void Bounce(int i) => _version[i]++;
 
     /// <summary>The position and velocity of particle <paramref name="i"/> at time <paramref name="s"/> into the step.</summary>
     public void Evaluate(int i, double s, out Vector3d position, out Vector3d velocity)

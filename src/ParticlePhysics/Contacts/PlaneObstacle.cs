@@ -44,15 +44,39 @@ public sealed class PlaneObstacle : Obstacle
     }
 
     /// <inheritdoc />
+    public override bool IsConvex => true;
+
+    /// <inheritdoc />
     public override void Translate(Vector3d offset) => Point = _point + offset;
 
-    private protected override ObstacleShape Describe(Vector3d offset)
+    /// <inheritdoc />
+    protected override ObstacleShape Describe(Vector3d offset)
     {
         UnitVectors.Tangents(_normal, out var tangent, out var bitangent);
         return new ObstacleShape(ObstacleKind.Plane, _point + offset, tangent, _normal, bitangent, Vector3d.Zero, 0.0);
     }
 
-    internal override double Distance(double x, double y, double z, out double nx, out double ny, out double nz)
+    /// <inheritdoc />
+    /// <remarks>Closed form: the gap g = phi(o) - r falls at d . n per metre, so it is reached at g / -(d . n).</remarks>
+    public override bool Cast(
+        Vector3d origin, Vector3d direction, double radius, double maxDistance, out double distance, out Vector3d normal, out int feature)
+    {
+        feature = -1;
+        normal = _normal;
+        distance = 0.0;
+        var gap = Distance(origin.X, origin.Y, origin.Z, out _, out _, out _) - radius;
+        if (!(gap > 0.0))
+        {
+            return true;
+        }
+
+        var rate = Vector3d.Dot(direction, _normal);
+        distance = gap / -rate;
+        return rate < 0.0 && distance <= maxDistance;
+    }
+
+    /// <inheritdoc />
+    public override double Distance(double x, double y, double z, out double nx, out double ny, out double nz)
     {
         nx = _normal.X;
         ny = _normal.Y;

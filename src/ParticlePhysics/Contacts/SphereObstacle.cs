@@ -1,4 +1,5 @@
 using System.Runtime.CompilerServices;
+
 namespace ParticlePhysics.Contacts;
 
 /// <summary>
@@ -45,13 +46,36 @@ public sealed class SphereObstacle : Obstacle
     }
 
     /// <inheritdoc />
+    public override bool IsConvex => true;
+
+    /// <inheritdoc />
     public override void Translate(Vector3d offset) => Center = _center + offset;
 
-    private protected override ObstacleShape Describe(Vector3d offset) => new(
+    /// <inheritdoc />
+    protected override ObstacleShape Describe(Vector3d offset) => new(
         ObstacleKind.Sphere, _center + offset, new Vector3d(1, 0, 0), new Vector3d(0, 1, 0), new Vector3d(0, 0, 1),
         Vector3d.Zero, _radius);
 
-    internal override double Distance(double x, double y, double z, out double nx, out double ny, out double nz) =>
+    /// <inheritdoc />
+    public override bool TryGetBounds(out Vector3d min, out Vector3d max)
+    {
+        var reach = new Vector3d(_radius, _radius, _radius);
+        min = _center - reach;
+        max = _center + reach;
+        return true;
+    }
+
+    /// <inheritdoc />
+    /// <remarks>Closed form: the smaller root of |o + t d - c| = R + r.</remarks>
+    public override bool Cast(
+        Vector3d origin, Vector3d direction, double radius, double maxDistance, out double distance, out Vector3d normal, out int feature)
+    {
+        feature = -1;
+        return ShapeCasts.Ball(_center, _radius, origin, direction, radius, maxDistance, out distance, out normal);
+    }
+
+    /// <inheritdoc />
+    public override double Distance(double x, double y, double z, out double nx, out double ny, out double nz) =>
         PointDistance(x - _center.X, y - _center.Y, z - _center.Z, out nx, out ny, out nz) - _radius;
 
     /// <summary>|d| and d / |d| (+y when d = 0).</summary>

@@ -130,10 +130,11 @@ public class BouncingBallTests
 /// <summary>A bouncing ball's run: each apex (from the state before it, exactly for a ballistic flight), each impact time the contact set reports.</summary>
 internal sealed record Bounces(List<double> Apexes, List<double> Impacts, double RestTime)
 {
-    public static Bounces Record(BouncingBallScenario scenario, string integrator, double dt, double duration)
+    public static Bounces Record(BouncingBallScenario scenario, string integrator, double dt, double duration, Action<ContactSet>? ground = null)
     {
         var world = scenario.Build();
         var contacts = world.Constraints.OfType<ContactSet>().Single();
+        ground?.Invoke(contacts);
         var stepper = IntegratorCatalog.Create(integrator);
         var apexes = new List<double>();
         var impacts = new List<double>();

@@ -89,8 +89,11 @@ public class SceneCorpusTests
         { "soft", "{ \"objects\": [{ \"type\": \"soft\" }] }", "not built yet: soft arrives with the issue \"solids from particles\"" },
         { "granular", "{ \"objects\": [{ \"type\": \"granular\" }] }", "not built yet: granular arrives with the issue \"solids from particles\"" },
         { "fluid", "{ \"objects\": [{ \"type\": \"fluid\" }] }", "not built yet: fluid arrives with the issue \"fluids\"" },
-        { "mesh collider", "{ \"colliders\": [{ \"type\": \"mesh\" }] }", "colliders[0].type = \"mesh\": not built yet: mesh arrives with the issue \"colliders a game has\"" },
-        { "heightfield", "{ \"colliders\": [{ \"type\": \"heightfield\" }] }", "not built yet: heightfield arrives with the issue \"colliders a game has\"" },
+        { "mesh collider without a mesh", "{ \"colliders\": [{ \"type\": \"mesh\" }] }", "colliders[0]: mesh needs \"mesh\"" },
+        { "mesh collider with a vertex out of range", "{ \"colliders\": [{ \"type\": \"mesh\", \"mesh\": { \"vertices\": [[0,0,0],[1,0,0],[0,0,1]], \"triangles\": [[0,1,3]] } }] }", "colliders[0].mesh.triangles[0]" },
+        { "mesh collider of a triangle without area", "{ \"colliders\": [{ \"type\": \"mesh\", \"mesh\": { \"vertices\": [[0,0,0],[1,0,0],[2,0,0]], \"triangles\": [[0,1,2]] } }] }", "has no area" },
+        { "heightfield without heights", "{ \"colliders\": [{ \"type\": \"heightfield\", \"cellSize\": [1, 1] }] }", "heightfield needs \"heights\"" },
+        { "heightfield with a short row", "{ \"colliders\": [{ \"type\": \"heightfield\", \"cellSize\": [1, 1], \"heights\": [[0, 1], [0]] }] }", "colliders[0].heights[1]" },
         { "unknown collider", "{ \"colliders\": [{ \"type\": \"cube\" }] }", "is not a kind of collider" },
         { "no positions", "{ \"objects\": [{ \"type\": \"particles\" }] }", "objects[0]: a particles object needs \"positions\"" },
         { "no particle", "{ \"objects\": [{ \"type\": \"particles\", \"positions\": [] }] }", "objects[0].positions = []: lists no particle" },
@@ -143,7 +146,6 @@ public class SceneCorpusTests
         { "restitution of a collider", "{ \"colliders\": [{ \"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, \"restitution\": -0.5 }] }", "colliders[0].restitution = -0.5: must be a number from 0 to 1" },
         { "friction of a collider", "{ \"colliders\": [{ \"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, \"friction\": -1 }] }", "friction = -1: must be a number >= 0" },
         { "typo in a collider", "{ \"colliders\": [{ \"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": 1 }] }", "colliders[0]: a sphere collider needs \"center\"" },
-        { "too many colliders", "{ \"colliders\": [" + string.Join(", ", Enumerable.Repeat("{ \"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1 }", 65)) + "] }", "colliders[64]: one collider too many: a scene holds at most 64" },
         { "a long string", "{ \"objects\": [{ \"type\": \"" + new string('x', 70_000) + "\" }] }", "a string longer than 65,536 characters" },
         { "far apart spring ends", "{ \"objects\": [{ \"type\": \"particles\", \"positions\": [[-1e308, 0, 0], [1e308, 0, 0]] }, { \"type\": \"springs\", \"pairs\": [[0, 1]], \"stiffness\": 1 }] }", "objects[1].pairs[0]: the particles are too far apart at the start for a length to be finite" },
     };
@@ -344,6 +346,7 @@ public class SceneCorpusTests
     private static List<(string Name, string Text)> SampleTexts() =>
         Directory.GetFiles(_folder, "*.json").OrderBy(f => f, StringComparer.Ordinal)
             .Where(f => new FileInfo(f).Length < 40_000) // the cloth and the drape: mutations of their long lists say nothing more
+            .Where(f => !File.ReadAllText(f).Contains(".obj\"", StringComparison.Ordinal)) // OBJ files beside them: mutants are parsed without their folder
             .Select(f => (Path.GetFileName(f), File.ReadAllText(f))).ToList();
 
     // One deterministic change of the kind a person or a broken tool makes: a character dropped, doubled or replaced, a

@@ -54,7 +54,7 @@ public class SceneRunTests
         }
 
         Assert.Equal(new[] { "cables", "cloth", "load", "particles", "rods", "rope", "springs" }, objects.OrderBy(k => k, StringComparer.Ordinal));
-        Assert.Equal(new[] { "box", "capsule", "plane", "sphere" }, colliders.OrderBy(k => k, StringComparer.Ordinal));
+        Assert.Equal(new[] { "box", "capsule", "heightfield", "mesh", "plane", "sphere" }, colliders.OrderBy(k => k, StringComparer.Ordinal));
     }
 
     [Fact]
@@ -120,6 +120,39 @@ public class SceneRunTests
             Assert.InRange(y, 0.05 - 1e-6, 2);
             Assert.InRange(x, -0.4 + 0.05 - 1e-3, 0.4 - 0.05 + 1e-3);
             Assert.InRange(z, -0.4 + 0.05 - 1e-3, 0.4 - 0.05 + 1e-3);
+        }
+    }
+
+    [Fact]
+    public void The_cloth_drapes_outside_the_boulder_mesh_and_the_balls_slide_down_the_terrain()
+    {
+        // The boulder is the OBJ's 320 facets around (0, 0.3, 0): no cloth particle (radius 0.01) nearer its centre than
+        // the nearest facet plane plus its radius, less 1 mm; the balls start at x = 1.3 on the terrain's top.
+        var path = Path.Combine(_folder, "drape-and-slope.json");
+        var boulder = ParticlePhysics.Scenes.Meshes.ObjReader.Read(Path.Combine(_folder, "boulder.obj"));
+        var inradius = double.PositiveInfinity;
+        for (var t = 0; t < boulder.TriangleCount; t++)
+        {
+            var a = boulder.Vertex(boulder.Triangles[3 * t]);
+            var n = Vector3d.Cross(boulder.Vertex(boulder.Triangles[(3 * t) + 1]) - a, boulder.Vertex(boulder.Triangles[(3 * t) + 2]) - a);
+            inradius = Math.Min(inradius, Vector3d.Dot(a, n / n.Length));
+        }
+
+        var run = DemoProcess.Run("scene", path, "--duration", "2", "--format", "csv").Csv();
+        var end = run.Rows[^1];
+        const int cloth = 17 * 17;
+        var lowest = double.PositiveInfinity;
+        for (var i = 0; i < cloth; i++)
+        {
+            var p = new Vector3d(end[1 + (6 * i)], end[2 + (6 * i)] - 0.3, end[3 + (6 * i)]);
+            Assert.True(p.Length >= inradius + 0.01 - 1e-3, $"cloth particle {i} at {p.Length} m from the boulder's centre");
+            lowest = Math.Min(lowest, end[2 + (6 * i)]);
+        }
+
+        Assert.True(lowest < 0.3, $"the cloth does not hang around the boulder: lowest {lowest}");
+        for (var i = cloth; i < cloth + 6; i++)
+        {
+            Assert.True(end[1 + (6 * i)] > 2.5, $"ball {i - cloth} stopped at x = {end[1 + (6 * i)]}");
         }
     }
 
