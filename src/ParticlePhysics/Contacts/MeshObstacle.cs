@@ -192,6 +192,30 @@ public sealed class MeshObstacle : Obstacle
         return new ObstacleShape(ObstacleKind.Mesh, _position + offset, _axisX, _axisY, _axisZ, half, _mesh.Vertices, _mesh.Triangles);
     }
 
+    /// <inheritdoc />
+    /// <remarks>
+    /// No triangle within reach: a sheet's unsigned distance is more, and so is a closed mesh's at a point outside its
+    /// box (the solid lies inside it); elsewhere only the sign is unknown, and the exact distance decides.
+    /// </remarks>
+    internal override bool IsFarOutside(double x, double y, double z, double reach)
+    {
+        var local = ToLocal(new Vector3d(x, y, z));
+        if (_mesh.AnyWithin(local, reach))
+        {
+            return false;
+        }
+
+        if (TwoSided)
+        {
+            return true;
+        }
+
+        var lo = _mesh.Min;
+        var hi = _mesh.Max;
+        var outsideBox = local.X < lo.X || local.X > hi.X || local.Y < lo.Y || local.Y > hi.Y || local.Z < lo.Z || local.Z > hi.Z;
+        return (_mesh.IsClosed && outsideBox) || _mesh.Distance(local, true, out _, out _) > reach;
+    }
+
     /// <summary>The least of the triangles' tangent bounds (<see cref="TriangleMesh.SafeStep"/>) while the gap is open.</summary>
     internal override double SafeStep(
         double qx, double qy, double qz, double wx, double wy, double wz, double radius, double gap, double rate, double bend, double limit)
