@@ -103,7 +103,18 @@ public sealed partial class ContactSet
                 var position = Read(x, i);
                 var start = Read(previous, i);
                 var p0 = start - obstacle.OffsetAt(context.Time);
-                if (obstacle.IsFarOutside(p0.X, p0.Y, p0.Z, SkipReach(radius, p0, position - start - (h * obstacle.Velocity))))
+                var known = ReferenceEquals(_farObstacles[i], obstacle);
+                var knownPoint = known ? _farPoints[i] : Vector3d.Zero;
+                var knownGap = known ? _farGaps[i] : double.NegativeInfinity;
+                var far = obstacle.IsFarOutside(p0.X, p0.Y, p0.Z, SkipReach(radius, p0, position - start - (h * obstacle.Velocity)), ref knownPoint, ref knownGap);
+                if (knownGap > double.NegativeInfinity)
+                {
+                    _farObstacles[i] = obstacle;
+                    _farPoints[i] = knownPoint;
+                    _farGaps[i] = knownGap;
+                }
+
+                if (far)
                 {
                     continue;
                 }

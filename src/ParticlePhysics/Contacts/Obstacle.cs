@@ -240,9 +240,10 @@ public abstract class Obstacle
     /// True only when the point is outside the shape and farther than <paramref name="reach"/> from it, phi &gt; reach
     /// (false when unsure, the default): a particle there cannot touch within a move shorter than reach minus its
     /// radius, and the contact stage skips it without asking the exact distance. Meshes answer it without a walk to the
-    /// nearest triangle.
+    /// nearest triangle. <paramref name="knownPoint"/> and <paramref name="knownGap"/> carry a fact the shape may use and
+    /// set: phi &gt;= knownGap at knownPoint, in the shape's own frame (-infinity: none).
     /// </summary>
-    internal virtual bool IsFarOutside(double x, double y, double z, double reach) => false;
+    internal virtual bool IsFarOutside(double x, double y, double z, double reach, ref Vector3d knownPoint, ref double knownGap) => false;
 
     /// <summary>
     /// A step u &gt;= 0 along a path at relative place q, relative velocity w and bend at most <paramref name="bend"/>
