@@ -101,22 +101,50 @@ public sealed partial class ContactSet
                 var k = _candidates[c];
                 var obstacle = _obstacles[k];
                 var position = Read(x, i);
-                var q = position - obstacle.OffsetAt(end);
-                var gap = obstacle.Distance(q.X, q.Y, q.Z, out var nx, out var ny, out var nz) - radius;
-                var normal = new Vector3d(nx, ny, nz);
                 var start = Read(previous, i);
                 var p0 = start - obstacle.OffsetAt(context.Time);
-                var startedOutside = obstacle.Distance(p0.X, p0.Y, p0.Z, out _, out _, out _) - radius >= 0.0;
-                if (!(gap < 0.0) || startedOutside)
+                var known = ReferenceEquals(_farObstacles[i], obstacle);
+                var knownPoint = known ? _farPoints[i] : Vector3d.Zero;
+                var knownGap = known ? _farGaps[i] : double.NegativeInfinity;
+                var far = obstacle.IsFarOutside(p0.X, p0.Y, p0.Z, SkipReach(radius, p0, position - start - (h * obstacle.Velocity)), ref knownPoint, ref knownGap);
+                if (knownGap > double.NegativeInfinity)
+                {
+                    _farObstacles[i] = obstacle;
+                    _farPoints[i] = knownPoint;
+                    _farGaps[i] = knownGap;
+                }
+
+                if (far)
+                {
+                    continue;
+                }
+
+                // The distance at the start is asked once, for whether it came from outside and as the search's first
+                // step; the end's only when that search does not decide the constraint.
+                var startGap = obstacle.Distance(p0.X, p0.Y, p0.Z, out var sx, out var sy, out var sz) - radius;
+                var startNormal = new Vector3d(sx, sy, sz);
+                var startedOutside = startGap >= 0.0;
+                var gap = 0.0;
+                var normal = Vector3d.Zero;
+                if (!startedOutside)
+                {
+                    gap = EndGap(obstacle, position, end, radius, out normal);
+                }
+
+                if (startedOutside || !(gap < 0.0))
                 {
                     // It came from outside: the constraint is the tangent plane where its straight move touched (a thin
                     // wall crossed, or entered deeper than its middle, would otherwise push it out the far side). The
                     // plane moves with the obstacle: touched at s, it is at touch + V (h - s) at the substep's end, so
                     // a moving obstacle carries a particle it met instead of leaving it where they touched.
-                    if (Crossed(obstacle, start, position, radius, context.Time, h, out var touch, out var entry))
+                    if (Crossed(obstacle, start, position, radius, context.Time, h, startGap, startNormal, out var touch, out var entry))
                     {
                         normal = entry;
                         gap = Vector3d.Dot(position - touch, normal);
+                    }
+                    else if (startedOutside)
+                    {
+                        gap = EndGap(obstacle, position, end, radius, out normal);
                     }
 
                     if (!(gap < 0.0))
@@ -309,7 +337,16 @@ public sealed partial class ContactSet
     /// obstacle since (the touching centre at s plus V (h - s)), and the normal there.
     /// </summary>
     private static bool Crossed(
-        Obstacle obstacle, Vector3d start, Vector3d end, double radius, double time, double h, out Vector3d touch, out Vector3d normal)
+        Obstacle obstacle,
+        Vector3d start,
+        Vector3d end,
+        double radius,
+        double time,
+        double h,
+        double startGap,
+        Vector3d startNormal,
+        out Vector3d touch,
+        out Vector3d normal)
     {
         touch = start;
         normal = Vector3d.Zero;
@@ -319,7 +356,18 @@ public sealed partial class ContactSet
         {
             var p = start + (s * (velocity + obstacle.Velocity));
             var q = p - obstacle.OffsetAt(time + s);
-            var gap = obstacle.Distance(q.X, q.Y, q.Z, out var nx, out var ny, out var nz) - radius;
+            double gap, nx, ny, nz;
+            if (iteration == 0)
+            {
+                // q is the start, where the caller asked already.
+                gap = startGap;
+                (nx, ny, nz) = (startNormal.X, startNormal.Y, startNormal.Z);
+            }
+            else
+            {
+                gap = obstacle.Distance(q.X, q.Y, q.Z, out nx, out ny, out nz) - radius;
+            }
+
             var rate = (velocity.X * nx) + (velocity.Y * ny) + (velocity.Z * nz);
             if (gap <= ContactSearch.ToleranceAt(Math.Abs(q.X) + Math.Abs(q.Y) + Math.Abs(q.Z)) && rate < 0.0)
             {
@@ -336,6 +384,27 @@ public sealed partial class ContactSet
         }
 
         return false;
+    }
+
+    /// <summary>
+    /// How far outside the obstacle a particle must start to be skipped: phi is 1-Lipschitz, so along a move of length
+    /// |m| relative to it the gap stays above phi(start) - r - |m|, which a margin far above the contact search's
+    /// tolerance and the rounding of the moves keeps positive: from there Crossed finds no touch and the end is not
+    /// inside, and the loop would go on to the next obstacle.
+    /// </summary>
+    private static double SkipReach(double radius, Vector3d start, Vector3d move)
+    {
+        var length = move.Length;
+        return radius + length + 1e-6 + (1e-12 * (Math.Abs(start.X) + Math.Abs(start.Y) + Math.Abs(start.Z) + length));
+    }
+
+    /// <summary>The gap at the substep's end (phi - r at the end position relative to the obstacle) and the normal there.</summary>
+    private static double EndGap(Obstacle obstacle, Vector3d position, double end, double radius, out Vector3d normal)
+    {
+        var q = position - obstacle.OffsetAt(end);
+        var gap = obstacle.Distance(q.X, q.Y, q.Z, out var nx, out var ny, out var nz) - radius;
+        normal = new Vector3d(nx, ny, nz);
+        return gap;
     }
 
     private void AddSubstepContact(int kind, int first, int second, Vector3d normal, double depth, double approach)

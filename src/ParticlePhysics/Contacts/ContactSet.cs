@@ -77,6 +77,13 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     private bool _anyParticleFilter;
     private int _capacity = -1;
 
+    // Per particle, a fact about the last obstacle it was found far outside of (Obstacle.IsFarOutside): phi at a point
+    // of that obstacle's own frame is at least the gap. A fact about the shape's geometry, true whichever particle or
+    // step wrote it, so it needs no invalidation; the slot only keeps one near where it is asked.
+    private Obstacle?[] _farObstacles = Array.Empty<Obstacle?>();
+    private Vector3d[] _farPoints = Array.Empty<Vector3d>();
+    private double[] _farGaps = Array.Empty<double>();
+
     /// <summary>The obstacles, in the order they were added (an obstacle's index is its place here).</summary>
     public IReadOnlyList<Obstacle> Obstacles => _obstacles;
 
@@ -326,6 +333,9 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         _boxes.EnsureCapacity(n);
         _pairs.EnsureParticles(n);
         _resting.EnsureCapacity(n);
+        _farObstacles = new Obstacle?[n];
+        _farPoints = new Vector3d[n];
+        _farGaps = new double[n];
         _capacity = n;
     }
 

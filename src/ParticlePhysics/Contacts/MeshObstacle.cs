@@ -192,6 +192,52 @@ public sealed class MeshObstacle : Obstacle
         return new ObstacleShape(ObstacleKind.Mesh, _position + offset, _axisX, _axisY, _axisZ, half, _mesh.Vertices, _mesh.Triangles);
     }
 
+    /// <inheritdoc />
+    /// <remarks>
+    /// No triangle within reach: a sheet's unsigned distance is more, and so is a closed mesh's at a point outside its
+    /// box (the solid lies inside it); elsewhere only the sign is unknown, and the exact distance decides, and is kept
+    /// as the known fact. phi is 1-Lipschitz, so a fact phi(k) &gt;= g gives phi(p) &gt;= g - |p - k| outside, which settles
+    /// a particle hanging in the mesh's box without a walk to the nearest triangle in each substep. The pose does not
+    /// enter the fact (it is in the mesh's frame) and the triangles never change; a fact is only kept from the signed
+    /// distance, which for a point outside is also the two-sided one.
+    /// </remarks>
+    internal override bool IsFarOutside(double x, double y, double z, double reach, ref Vector3d knownPoint, ref double knownGap)
+    {
+        var local = ToLocal(new Vector3d(x, y, z));
+        if (knownGap - (local - knownPoint).Length > reach)
+        {
+            return true;
+        }
+
+        if (_mesh.AnyWithin(local, reach))
+        {
+            return false;
+        }
+
+        if (TwoSided)
+        {
+            return true;
+        }
+
+        var lo = _mesh.Min;
+        var hi = _mesh.Max;
+        var outsideBox = local.X < lo.X || local.X > hi.X || local.Y < lo.Y || local.Y > hi.Y || local.Z < lo.Z || local.Z > hi.Z;
+        if (_mesh.IsClosed && outsideBox)
+        {
+            return true;
+        }
+
+        var d = _mesh.Distance(local, true, out _, out _);
+        if (!(d > reach))
+        {
+            return false;
+        }
+
+        knownPoint = local;
+        knownGap = d;
+        return true;
+    }
+
     /// <summary>The least of the triangles' tangent bounds (<see cref="TriangleMesh.SafeStep"/>) while the gap is open.</summary>
     internal override double SafeStep(
         double qx, double qy, double qz, double wx, double wy, double wz, double radius, double gap, double rate, double bend, double limit)

@@ -237,6 +237,15 @@ public abstract class Obstacle
     internal Vector3d OffsetAt(double time) => (time - _referenceTime) * _velocity;
 
     /// <summary>
+    /// True only when the point is outside the shape and farther than <paramref name="reach"/> from it, phi &gt; reach
+    /// (false when unsure, the default): a particle there cannot touch within a move shorter than reach minus its
+    /// radius, and the contact stage skips it without asking the exact distance. Meshes answer it without a walk to the
+    /// nearest triangle. <paramref name="knownPoint"/> and <paramref name="knownGap"/> carry a fact the shape may use and
+    /// set: phi &gt;= knownGap at knownPoint, in the shape's own frame (-infinity: none).
+    /// </summary>
+    internal virtual bool IsFarOutside(double x, double y, double z, double reach, ref Vector3d knownPoint, ref double knownGap) => false;
+
+    /// <summary>
     /// A step u &gt;= 0 along a path at relative place q, relative velocity w and bend at most <paramref name="bend"/>
     /// within which the gap cannot close (<see cref="ContactSearch"/>), given the gap and its rate at q. Meshes and height
     /// fields override it with the least of their triangles' convex bounds, and may return +infinity once they know the

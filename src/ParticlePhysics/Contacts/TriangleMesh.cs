@@ -210,6 +210,47 @@ internal sealed class TriangleMesh
     }
 
     /// <summary>
+    /// Whether some triangle comes within <paramref name="reach"/> of p: the tree is walked nearest node first, skipping
+    /// every node whose box is farther, and stops at the first such triangle. A point far from the surface costs the
+    /// few boxes near the root, where <see cref="Nearest"/> would walk every leaf as near as the nearest triangle.
+    /// </summary>
+    public bool AnyWithin(Vector3d p, double reach)
+    {
+        Span<int> stack = stackalloc int[BoxTree.MaxDepth];
+        var squaredReach = reach * reach;
+        var top = 0;
+        stack[top++] = 0;
+        while (top > 0)
+        {
+            var node = stack[--top];
+            if (!(_tree.DistanceTo(node, p.X, p.Y, p.Z) <= reach))
+            {
+                continue;
+            }
+
+            var count = _tree.NodeCount[node];
+            var first = _tree.NodeFirst[node];
+            if (count > 0)
+            {
+                for (var k = first; k < first + count; k++)
+                {
+                    Corners(_tree.Items[k], out var a, out var b, out var c);
+                    if (!(TriangleGeometry.Closest(p, a, b, c, out _, out _) > squaredReach))
+                    {
+                        return true;
+                    }
+                }
+
+                continue;
+            }
+
+            PushNearestLast(stack, ref top, first, _tree.DistanceTo(first, p.X, p.Y, p.Z), _tree.DistanceTo(first + 1, p.X, p.Y, p.Z));
+        }
+
+        return false;
+    }
+
+    /// <summary>
     /// The least of the triangles' tangent bounds (<see cref="ContactSearch.SafeStep"/>) for a sphere of radius r at p
     /// moving at w along a path of bend at most A: the distance to the mesh is the least of the triangles' distances,
     /// each convex and 1-Lipschitz, so the first root of the least of their lower bounds is the first root of a lower
