@@ -71,21 +71,11 @@ public sealed class BoxObstacle : Obstacle
     /// </exception>
     public void SetOrientation(Vector3d axisX, Vector3d axisY)
     {
-        // Normalised first: |axisY| itself underflows to 0 below about 1e-154 and overflows above about 1e154, and a
-        // test scaled by it would call such axes parallel. For unit u, |u - (u . x) x| is the sine of the angle.
-        var x = UnitVectors.Normalized(axisX, nameof(axisX));
-        var u = UnitVectors.Normalized(axisY, nameof(axisY));
-        var y = u - (Vector3d.Dot(u, x) * x);
-        if (!(y.Length > 1e-12))
-        {
-            throw new ArgumentOutOfRangeException(
-                nameof(axisY), axisY, $"axisY must not be parallel to axisX {axisX}; got {axisY}.");
-        }
-
-        y = UnitVectors.Normalized(y, nameof(axisY));
+        // Into locals first: a refused pair leaves the pose as it was.
+        UnitVectors.Frame(axisX, axisY, out var x, out var y, out var z);
         _axisX = x;
         _axisY = y;
-        _axisZ = Vector3d.Cross(x, y);
+        _axisZ = z;
     }
 
     /// <inheritdoc />

@@ -92,19 +92,11 @@ public sealed class MeshObstacle : Obstacle
     /// <exception cref="ArgumentOutOfRangeException">An axis is zero or not finite, or the two are parallel.</exception>
     public void SetOrientation(Vector3d axisX, Vector3d axisY)
     {
-        var x = UnitVectors.Normalized(axisX, nameof(axisX));
-        var u = UnitVectors.Normalized(axisY, nameof(axisY));
-        var y = u - (Vector3d.Dot(u, x) * x);
-        if (!(y.Length > 1e-12))
-        {
-            throw new ArgumentOutOfRangeException(
-                nameof(axisY), axisY, $"axisY must not be parallel to axisX {axisX}; got {axisY}.");
-        }
-
-        y = UnitVectors.Normalized(y, nameof(axisY));
+        // Into locals first: a refused pair leaves the pose as it was.
+        UnitVectors.Frame(axisX, axisY, out var x, out var y, out var z);
         _axisX = x;
         _axisY = y;
-        _axisZ = Vector3d.Cross(x, y);
+        _axisZ = z;
     }
 
     /// <summary>Triangle <paramref name="triangle"/>'s corners where the pose puts them, in metres.</summary>
