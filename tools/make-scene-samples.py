@@ -190,6 +190,23 @@ def flag():
     }
 
 
+def flag_in_wind():
+    # The same flag (flag.obj) in a 5 m/s wind along +x with a gust: a wave across the flag (z) of 0.6 m/s at 0.7 Hz
+    # and one along it of 1 m/s at 0.3 Hz, both travelling downwind. Flat in the plane of the wind, the flag would feel
+    # no force until something breaks its symmetry: the gust does, and it streams out and flutters.
+    scene = flag()
+    scene["duration"] = 8
+    scene["air"] = {
+        "density": 1.2, "velocity": [5, 0, 0], "drag": 1.2, "lift": 0.5,
+        "gust": [
+            {"amplitude": [0, 0, 0.6], "frequency": 0.7, "waveVector": [0.9, 0, 0]},
+            {"amplitude": [1, 0, 0], "frequency": 0.3, "waveVector": [0.4, 0, 0], "phase": 1},
+        ],
+    }
+    scene["objects"][0]["aerodynamics"] = True
+    return scene
+
+
 def ropes():
     # Two ropes of 1 m and 21 points: one clamped horizontally at its first two points, with bending rigidity EI, sags
     # mu g L^4 / (8 EI) = 0.049 m (mu = 0.1 kg/m, EI = 2.5 N m^2, L from midway between the pinned points); one of
@@ -214,6 +231,10 @@ dump("samples/scenes/flag.json", [
     "A flag from an OBJ mesh cut along a UV seam: welded into one cloth of membrane (Y = 1000 N/m, nu = 0.3) and",
     "plate bending (D = 1e-4 N m), pinned along its pole and hanging from it. Written by tools/make-scene-samples.py.",
 ], flag())
+dump("samples/scenes/flag-in-wind.json", [
+    "The flag of flag.json in a 5 m/s wind along +x with a deterministic gust (air density 1.2 kg/m^3, C_d 1.2, C_l 0.5):",
+    "its triangles feel pressure drag and lift, and it streams out downwind and flutters. Written by tools/make-scene-samples.py.",
+], flag_in_wind())
 dump("samples/scenes/ropes.json", [
     "Two ropes of 1 m: one held out horizontally by its first two points, with bending rigidity EI = 2.5 N m^2, which",
     "sags 4.9 cm, and one of springs without bending hanging from both ends. Written by tools/make-scene-samples.py.",

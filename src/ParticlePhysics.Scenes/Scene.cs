@@ -4,6 +4,7 @@ using System.Globalization;
 using System.IO;
 using System.Linq;
 using System.Text;
+using ParticlePhysics.Aerodynamics;
 using ParticlePhysics.Integrators;
 using ParticlePhysics.Scenes.Json;
 using ParticlePhysics.Scenes.Kinds;
@@ -117,6 +118,12 @@ public sealed class Scene
             ? Invariant($"particle collisions: on (restitution {s.ParticleRestitution:R}, friction {s.ParticleFriction:R})")
             : "particle collisions: off");
         text.AppendLine(Invariant($"gravity: [{s.Gravity.X:R}, {s.Gravity.Y:R}, {s.Gravity.Z:R}] m/s^2, drag: {s.Drag:R} N s/m"));
+        if (s.Air is { } air)
+        {
+            var gust = air.Gust is { } g ? Invariant($", a gust of {g.WaveCount} wave{(g.WaveCount == 1 ? string.Empty : "s")}") : string.Empty;
+            text.AppendLine(Invariant($"air: {air.Density:R} kg/m^3 at [{air.Velocity.X:R}, {air.Velocity.Y:R}, {air.Velocity.Z:R}] m/s, C_d {air.DragCoefficient:R}, C_l {air.LiftCoefficient:R}{gust}"));
+        }
+
         var integrator = s.Integrator + (IntegratorCatalog.IsPositionBased(s.Integrator) ? Invariant($" ({s.Substeps} substeps)") : string.Empty)
             + (IntegratorCatalog.IsAdaptive(s.Integrator) ? Invariant($" (tolerance {s.Tolerance:R})") : string.Empty);
         text.Append(Invariant($"integrator: {integrator}, dt = {s.TimeStep:R} s, duration {s.Duration:R} s"));
@@ -126,7 +133,7 @@ public sealed class Scene
     private ParticleWorld Build(out Dictionary<string, int> counts)
     {
         var world = new ParticleWorld(ParticleCount);
-        var builder = new SceneBuilder(world, File);
+        var builder = new SceneBuilder(world, File, Settings);
         try
         {
             foreach (var o in _objects)
@@ -226,10 +233,7 @@ public sealed class Scene
         };
         ReadIntegrator(reader, settings);
         ReadParticleCollisions(reader, settings);
-        if (reader.Get("air") is { } air)
-        {
-            throw reader.Error(air, "air", "not built yet: air (aerodynamics) arrives with the issue \"cloth in the world\"", showValue: false);
-        }
+        ReadAir(reader, settings);
 
         return settings;
     }
@@ -278,6 +282,50 @@ public sealed class Scene
         }
 
         settings.Integrator = nameAt.String;
+    }
+
+    private static void ReadAir(ObjectReader reader, SceneSettings settings)
+    {
+        if (reader.Object("air", "the air") is not { } air)
+        {
+            return;
+        }
+
+        settings.Air = new Air(
+            air.Number("density", Air.StandardDensity, ValueRule.NonNegative, "kg/m^3"),
+            air.Vector("velocity", Vector3d.Zero, "m/s"),
+            air.Number("drag", 1.0, ValueRule.NonNegative, string.Empty),
+            air.Number("lift", 0.0, ValueRule.NonNegative, string.Empty));
+        if (air.Get("gust") is { } gust)
+        {
+            if (gust.Kind != JsonKind.Array || gust.Count == 0)
+            {
+                throw air.Error(gust, "air.gust", "must be a list of one or more waves {\"amplitude\": [ax, ay, az], \"frequency\": f, \"waveVector\": [kx, ky, kz], \"phase\": phi}");
+            }
+
+            var waves = new GustWave[gust.Count];
+            var i = 0;
+            foreach (var element in gust.Elements())
+            {
+                var path = ObjectReader.Index("air.gust", i);
+                if (element.Kind != JsonKind.Object)
+                {
+                    throw air.Error(element, path, "must be a wave {\"amplitude\": [ax, ay, az], \"frequency\": f, \"waveVector\": [kx, ky, kz], \"phase\": phi}");
+                }
+
+                var wave = new ObjectReader(reader.Document, element, path, "a gust's wave");
+                waves[i++] = new GustWave(
+                    wave.Vector("amplitude", null, "m/s"),
+                    wave.Number("frequency", null, ValueRule.NonNegative, "Hz"),
+                    wave.Vector("waveVector", Vector3d.Zero, "rad/m"),
+                    wave.Number("phase", 0.0, ValueRule.Finite, "rad"));
+                wave.Finish();
+            }
+
+            settings.Air.Gust = new Gust(waves);
+        }
+
+        air.Finish();
     }
 
     private static void ReadParticleCollisions(ObjectReader reader, SceneSettings settings)

@@ -1,3 +1,4 @@
+using ParticlePhysics.Aerodynamics;
 using ParticlePhysics.Integrators;
 
 namespace ParticlePhysics.Scenes;
@@ -46,4 +47,15 @@ public sealed class SceneSettings
 
     /// <summary>The Coulomb friction between particles (default 0).</summary>
     public double ParticleFriction { get; internal set; }
+
+    /// <summary>
+    /// The air of the file's <c>air</c> (null when it has none): what the cloths with <c>aerodynamics</c> move in. Each
+    /// world built from the scene gets a copy of its own, so that changing one world's wind leaves the others alone.
+    /// </summary>
+    public Air? Air { get; internal set; }
+
+    /// <summary>The air the cloths with <c>aerodynamics</c> move in: a copy of <see cref="Air"/>, or the contract's default still air.</summary>
+    internal Air NewAir() => Air is { } air
+        ? new Air(air.Density, air.Velocity, air.DragCoefficient, air.LiftCoefficient) { Gust = air.Gust }
+        : new Air(Aerodynamics.Air.StandardDensity, Vector3d.Zero, 1.0, 0.0);
 }

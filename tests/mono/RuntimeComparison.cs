@@ -508,6 +508,20 @@ namespace ParticlePhysics.RuntimeComparison
             }
 
             Print("scene/newtons-cradle", StateHash(cradleWorld, integrator));
+
+            // The flag in a gusty wind: the aerodynamics and the gust's own sines, under xpbd and implicit Euler.
+            var flag = Scene.Load("samples/scenes/flag-in-wind.json");
+            foreach (var name in new[] { "xpbd", "implicit-euler" })
+            {
+                var flagWorld = flag.Build();
+                var flagIntegrator = IntegratorCatalog.Create(name);
+                for (var step = 0; step < 120; step++)
+                {
+                    flagWorld.Step(flagIntegrator, flag.Settings.TimeStep);
+                }
+
+                Print("scene/flag-in-wind/" + name, StateHash(flagWorld, flagIntegrator));
+            }
         }
 
         // A decimal number of 1 to 25 digits (the first not 0), a point somewhere, an exponent from -300 to 280, from an LCG.

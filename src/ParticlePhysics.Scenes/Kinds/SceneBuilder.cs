@@ -1,4 +1,5 @@
 using System.Collections.Generic;
+using ParticlePhysics.Aerodynamics;
 using ParticlePhysics.Constraints;
 using ParticlePhysics.Contacts;
 using ParticlePhysics.Forces;
@@ -11,7 +12,8 @@ namespace ParticlePhysics.Scenes.Kinds;
 /// springs in one <see cref="ZeroLengthSprings"/>, all rods and cables in one <see cref="RodNetwork"/>, all loads in one
 /// <see cref="ConstantLoads"/>), in the order the objects list them. <see cref="Finish"/> adds them to the world in a
 /// fixed order, the order the course's scenarios use, so that a scene written like a scenario gives its bits:
-/// forces springs, zero-length springs, the cloths' membranes and the bending, loads, drag, gravity; constraint sets
+/// forces springs, zero-length springs, the cloths' membranes and the bending, loads, drag, the cloths' aerodynamics,
+/// gravity (the order a <see cref="Cloth.MeshClothBuilder"/> adds its own in); constraint sets
 /// the projections of the springs, membranes and bending (for xpbd), the rods, the contacts.
 /// </summary>
 internal sealed class SceneBuilder
@@ -24,12 +26,20 @@ internal sealed class SceneBuilder
     private TriangleMembrane? _membrane;
     private QuadraticBending? _bending;
     private ExcludedPairs? _meshEdges;
+    private TriangleAerodynamics? _aerodynamics;
 
-    public SceneBuilder(ParticleWorld world, string file)
+    public SceneBuilder(ParticleWorld world, string file, SceneSettings settings)
     {
         World = world;
         File = file;
+        Settings = settings;
     }
+
+    /// <summary>The scene's settings (its air for the cloths' aerodynamics).</summary>
+    public SceneSettings Settings { get; }
+
+    /// <summary>The air's drag and lift on the triangles of every cloth with <c>aerodynamics</c>, made on first use.</summary>
+    public TriangleAerodynamics Aerodynamics => _aerodynamics ??= new TriangleAerodynamics(World, Settings.NewAir());
 
     public ParticleWorld World { get; }
 
@@ -98,6 +108,11 @@ internal sealed class SceneBuilder
         if (settings.Drag > 0)
         {
             world.AddForce(new LinearDrag(settings.Drag));
+        }
+
+        if (_aerodynamics is not null)
+        {
+            world.AddForce(_aerodynamics);
         }
 
         if (settings.Gravity != Vector3d.Zero)

@@ -17,7 +17,8 @@ namespace ParticlePhysics.Scenes.Objects;
 /// {"modulus": Y, "poisson": nu} (the membrane, default {"modulus": 1000, "poisson": 0.3}), each with "damping"
 /// (N s/m: the springs' axial damping, or the membrane's viscosity); <c>bending</c> {"rigidity": D} (N m);
 /// <c>velocities</c> (per vertex); <c>pinned</c> (vertex indices); <c>thickness</c> (m: the particles' radius is half
-/// of it). <c>selfCollision</c>, <c>aerodynamics</c> and <c>tear</c> arrive with the issue "cloth in the world".
+/// of it); <c>aerodynamics</c> (default false: the scene's <c>air</c> pushes on its triangles). <c>selfCollision</c> and
+/// <c>tear</c> arrive with the rest of the issue "cloth in the world".
 /// </summary>
 internal sealed class ClothKind : ISceneObjectKind
 {
@@ -25,7 +26,7 @@ internal sealed class ClothKind : ISceneObjectKind
 
     public SceneObject Read(ObjectReader reader, SceneReadContext context)
     {
-        foreach (var later in new[] { "selfCollision", "aerodynamics", "tear" })
+        foreach (var later in new[] { "selfCollision", "tear" })
         {
             if (reader.Get(later) is { } value)
             {
@@ -94,6 +95,7 @@ internal sealed class ClothKind : ISceneObjectKind
         }
 
         var thickness = reader.Number("thickness", 0.0, ValueRule.NonNegative, "m");
+        var aerodynamics = reader.Boolean("aerodynamics", false);
         foreach (var m in builder.ParticleMasses())
         {
             if (!(m > 0) || double.IsInfinity(1.0 / m) || double.IsInfinity(m))
@@ -102,7 +104,7 @@ internal sealed class ClothKind : ISceneObjectKind
             }
         }
 
-        return new ClothObject(builder, particleVelocities, thickness / 2);
+        return new ClothObject(builder, particleVelocities, thickness / 2, aerodynamics);
     }
 
     private static (double[] Vertices, int[] Triangles, string? Obj) ReadMesh(ObjectReader mesh, SceneReadContext context)
@@ -233,13 +235,15 @@ internal sealed class ClothKind : ISceneObjectKind
         private readonly MeshClothBuilder _builder;
         private readonly Vector3d[] _velocities;
         private readonly double _radius;
+        private readonly bool _aerodynamics;
         private int _first;
 
-        public ClothObject(MeshClothBuilder builder, Vector3d[] velocities, double radius)
+        public ClothObject(MeshClothBuilder builder, Vector3d[] velocities, double radius, bool aerodynamics)
         {
             _builder = builder;
             _velocities = velocities;
             _radius = radius;
+            _aerodynamics = aerodynamics;
         }
 
         public override int ParticleCount => _builder.Mesh.ParticleCount;
@@ -267,6 +271,12 @@ internal sealed class ClothKind : ISceneObjectKind
             _builder.AddElements(_first, springs, membrane, bending);
             builder.Count("springs", (springs?.Count ?? 0) - before);
             builder.Count("bending elements", (bending?.Count ?? 0) - elements);
+            if (_aerodynamics)
+            {
+                _builder.AddTriangles(_first, builder.Aerodynamics);
+                builder.Count("aerodynamic triangles", _builder.Mesh.TriangleCount);
+            }
+
             var triangles = _builder.Mesh.ParticleTriangles.ToArray();
             for (var t = 0; t < _builder.Mesh.TriangleCount; t++)
             {

@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using ParticlePhysics.Aerodynamics;
 using ParticlePhysics.Constraints;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Numerics;
@@ -37,7 +38,7 @@ public enum ClothMassDistribution
 /// </summary>
 /// <remarks>
 /// The forces, in the order they are added: the springs (edge springs, then those of <see cref="AddSpring(int, int, double, double)"/>), the
-/// membrane, the bending, linear drag, and (<see cref="Build"/> only) gravity; then the constraint sets projecting the
+/// membrane, the bending, linear drag, the aerodynamics (with an <see cref="Air"/>), and (<see cref="Build"/> only) gravity; then the constraint sets projecting the
 /// springs, the membrane and the bending under xpbd (they do nothing under the force-based integrators). Each is made
 /// only when the cloth has some of it. The membrane and the bending are measured against their theories in the tests
 /// (a strip's stretch F / (Y b), a cantilever's sag rho_A g L^4 / (8 D), a cylinder's energy D A / (2 R^2)), so that
@@ -220,6 +221,12 @@ public sealed class MeshClothBuilder
         }
     }
 
+    /// <summary>
+    /// The air whose drag and lift act on every triangle (<see cref="TriangleAerodynamics"/>), or null for none (the
+    /// default). The cloth keeps this object: change its wind between steps and the cloth feels it.
+    /// </summary>
+    public Air? Air { get; set; }
+
     /// <summary>g, in m/s^2, pointing down -y (default 9.81); used by <see cref="Build"/> only.</summary>
     public double Gravity
     {
@@ -388,6 +395,20 @@ public sealed class MeshClothBuilder
         }
     }
 
+    /// <summary>
+    /// Adds the mesh's triangles, for particles from <paramref name="firstParticle"/> on, to
+    /// <paramref name="aerodynamics"/> (for hosts that share one generator between cloths: the scene loader).
+    /// </summary>
+    public void AddTriangles(int firstParticle, TriangleAerodynamics aerodynamics)
+    {
+        Guard.NotNull(aerodynamics, nameof(aerodynamics));
+        var triangles = Mesh.ParticleTriangles.ForReading();
+        for (var t = 0; t < Mesh.TriangleCount; t++)
+        {
+            aerodynamics.Add(firstParticle + triangles[3 * t], firstParticle + triangles[(3 * t) + 1], firstParticle + triangles[(3 * t) + 2]);
+        }
+    }
+
     /// <summary>Whether the cloth has springs: edge springs, or springs added one by one.</summary>
     public bool NeedsSprings => _stretch == ClothStretch.EdgeSprings || _springs.Count > 0;
 
@@ -422,6 +443,14 @@ public sealed class MeshClothBuilder
         }
 
         world.AddForce(drag);
+        TriangleAerodynamics? aerodynamics = null;
+        if (Air is { } air)
+        {
+            aerodynamics = new TriangleAerodynamics(world, air);
+            AddTriangles(first, aerodynamics);
+            world.AddForce(aerodynamics);
+        }
+
         if (gravity is not null)
         {
             world.AddForce(gravity);
@@ -445,7 +474,7 @@ public sealed class MeshClothBuilder
             world.AddConstraints(bendingProjection);
         }
 
-        return new TriangleCloth(world, Mesh, first, springs, springProjection, membrane, membraneProjection, bending, bendingProjection, drag, gravity);
+        return new TriangleCloth(world, Mesh, first, springs, springProjection, membrane, membraneProjection, bending, bendingProjection, drag, aerodynamics, gravity);
     }
 
     private int AddParticles(ParticleWorld world, double[] masses, Vector3d[] velocities)

@@ -1,5 +1,6 @@
 using System;
 using System.Numerics;
+using ParticlePhysics.Aerodynamics;
 using ParticlePhysics.Constraints;
 using ParticlePhysics.Forces;
 using ParticlePhysics.Numerics;
@@ -27,6 +28,7 @@ public sealed class TriangleCloth
         QuadraticBending? bending,
         BendingProjection? bendingProjection,
         LinearDrag drag,
+        TriangleAerodynamics? aerodynamics,
         Gravity? gravity)
     {
         System = world;
@@ -39,6 +41,7 @@ public sealed class TriangleCloth
         Bending = bending;
         BendingProjection = bendingProjection;
         Drag = drag;
+        Aerodynamics = aerodynamics;
         Gravity = gravity;
         _particlePositions = new Vector3[mesh.ParticleCount];
         _particleNormals = new Vector3[mesh.ParticleCount];
@@ -76,6 +79,9 @@ public sealed class TriangleCloth
 
     /// <summary>The linear drag on the cloth's particles.</summary>
     public LinearDrag Drag { get; }
+
+    /// <summary>The air's drag and lift on the cloth's triangles, or null when it was built without an air.</summary>
+    public TriangleAerodynamics? Aerodynamics { get; }
 
     /// <summary>The gravity <see cref="MeshClothBuilder.Build"/> added, or null for a cloth added to an existing world.</summary>
     public Gravity? Gravity { get; }
