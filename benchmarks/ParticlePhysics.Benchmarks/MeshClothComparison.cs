@@ -263,7 +263,7 @@ internal static class MeshClothComparison
     }
 
     /// <summary>One warm-up run of each, then <paramref name="rounds"/> rounds of first then second: wall times [ms].</summary>
-    private static (double[] First, double[] Second) Alternate(Action first, Action second, int rounds)
+    internal static (double[] First, double[] Second) Alternate(Action first, Action second, int rounds)
     {
         first();
         second();

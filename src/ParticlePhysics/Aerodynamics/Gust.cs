@@ -11,8 +11,10 @@ namespace ParticlePhysics.Aerodynamics;
 /// <remarks>The phase 2 pi f t - k . x + phi must stay within 1.6e6 rad for full accuracy (f = 10 Hz for 7 h).</remarks>
 public sealed class Gust
 {
+    private const int Stride = 8; // 2 pi f, kx, ky, kz, phi, ax, ay, az
+
     private readonly GustWave[] _waves;
-    private readonly double[] _angularFrequencies;
+    private readonly double[] _packed;
 
     /// <summary>A gust of the given waves (at least one; every value finite, frequencies &gt;= 0).</summary>
     public Gust(params GustWave[] waves)
@@ -24,7 +26,7 @@ public sealed class Gust
         }
 
         _waves = (GustWave[])waves.Clone();
-        _angularFrequencies = new double[waves.Length];
+        _packed = new double[Stride * waves.Length];
         for (var m = 0; m < _waves.Length; m++)
         {
             var wave = _waves[m];
@@ -33,11 +35,21 @@ public sealed class Gust
             Guard.NonNegativeFinite(wave.Frequency, name + ".Frequency");
             Guard.Finite(wave.WaveVector, name + ".WaveVector");
             Guard.Finite(wave.Phase, name + ".Phase");
-            _angularFrequencies[m] = 2.0 * Math.PI * wave.Frequency;
-            if (!DoubleChecks.IsFinite(_angularFrequencies[m]))
+            var omega = 2.0 * Math.PI * wave.Frequency;
+            if (!DoubleChecks.IsFinite(omega))
             {
                 throw new ArgumentOutOfRangeException(name + ".Frequency", wave.Frequency, $"{name}.Frequency times 2 pi must be finite; got {Guard.Format(wave.Frequency)}.");
             }
+
+            var o = Stride * m;
+            _packed[o] = omega;
+            _packed[o + 1] = wave.WaveVector.X;
+            _packed[o + 2] = wave.WaveVector.Y;
+            _packed[o + 3] = wave.WaveVector.Z;
+            _packed[o + 4] = wave.Phase;
+            _packed[o + 5] = wave.Amplitude.X;
+            _packed[o + 6] = wave.Amplitude.Y;
+            _packed[o + 7] = wave.Amplitude.Z;
         }
     }
 
@@ -59,15 +71,14 @@ public sealed class Gust
     public Vector3d VelocityAt(double time, Vector3d position)
     {
         double x = 0.0, y = 0.0, z = 0.0;
-        for (var m = 0; m < _waves.Length; m++)
+        var packed = _packed;
+        for (var o = 0; o + Stride <= packed.Length; o += Stride)
         {
-            var wave = _waves[m];
-            var k = wave.WaveVector;
-            var phase = (_angularFrequencies[m] * time) - ((k.X * position.X) + (k.Y * position.Y) + (k.Z * position.Z)) + wave.Phase;
+            var phase = (packed[o] * time) - ((packed[o + 1] * position.X) + (packed[o + 2] * position.Y) + (packed[o + 3] * position.Z)) + packed[o + 4];
             var s = DeterministicTrig.Sin(phase);
-            x += s * wave.Amplitude.X;
-            y += s * wave.Amplitude.Y;
-            z += s * wave.Amplitude.Z;
+            x += s * packed[o + 5];
+            y += s * packed[o + 6];
+            z += s * packed[o + 7];
         }
 
         return new Vector3d(x, y, z);

@@ -18,7 +18,11 @@ namespace ParticlePhysics.Aerodynamics;
 /// Lift, computed without s: write v_rel = v_n n + r_t (r_t in the plate's plane, t = |r_t|, so s^2 = v_n^2 + t^2).
 /// Then w = (t^2 n - v_n r_t) / s^2, |w| = t / s and s w / |w| = t n - (v_n / t) r_t, so
 /// F_l = 1/2 rho C_l A v_n (t n - (v_n / t) r_t): one square root and one division, and w = 0 exactly when r_t = 0
-/// (taken as 0 within 1e-12 rad of the normal, where its direction is rounding's).
+/// (taken as 0 within 1e-12 rad of the normal, where its direction is rounding's). With N = (x1 - x0) x (x2 - x0)
+/// and d = v_rel . N = v_n |N|, the drag's A |v_n| v_n n = |d| d N / (2 |N|^2) needs no square root; with
+/// T = |N|^2 r_t = |N|^2 v_rel - d N and Q = |N| |T| the lift's A v_n (t n - (v_n / t) r_t) =
+/// d (|T|^2 N - d |N|^2 T) / (2 Q |N|^2) needs one, and one division serves both (1 / |N|^2 = Q / (Q |N|^2)). The
+/// products reach |N|^6 |v_rel|^2: within range for edges from 1e-25 m to 1e25 m.
 /// At angle of attack alpha (v_n = s sin alpha, t = s cos alpha) its size is 1/2 rho C_l A s^2 sin alpha, and the
 /// drag's 1/2 rho C_d A s^2 sin^2 alpha.
 /// </para>
@@ -35,6 +39,7 @@ namespace ParticlePhysics.Aerodynamics;
 public sealed class TriangleAerodynamics : IForceGenerator, IBoundForce, IJacobianCouplings, IAppendOnlyCouplings
 {
     private const int LinearStride = 4; // n (3), K = b rho C_d A |v_n| / 9
+    private const double Third = 1.0 / 3.0;
 
     // n is a unit vector only to rounding, so a flow along it leaves an r_t of a few units in the last place of s,
     // whose direction is noise: below 1e-12 |v_n| (1e-12 rad off the normal) r_t is taken as 0, the contract's w = 0.
@@ -109,7 +114,92 @@ public sealed class TriangleAerodynamics : IForceGenerator, IBoundForce, IJacobi
     public void AddForces(in ParticleState state, Span<double> forces)
     {
         CheckSizes(state.Positions.Length, state.Velocities.Length, forces.Length);
-        Evaluate(state, forces, 0.0, Span<double>.Empty);
+        var air = _air;
+        var drag = 0.5 * air.Density * air.DragCoefficient * Third;     // a third to each corner, folded in
+        var lift = 0.5 * air.Density * air.LiftCoefficient * Third;
+        var gust = air.Gust;
+        double ux = air.Velocity.X, uy = air.Velocity.Y, uz = air.Velocity.Z;
+        var time = state.Time;
+        unsafe
+        {
+            // CheckSizes: the buffers hold every particle, and every corner is one (checked in Add).
+            fixed (double* xp = &MemoryMarshal.GetReference(state.Positions), vp = &MemoryMarshal.GetReference(state.Velocities), fp = forces)
+            fixed (int* corners = _corners)
+            {
+                for (var t = 0; t < _count; t++)
+                {
+                    int i0 = 3 * corners[3 * t], i1 = 3 * corners[(3 * t) + 1], i2 = 3 * corners[(3 * t) + 2];
+                    double ax = xp[i1] - xp[i0], ay = xp[i1 + 1] - xp[i0 + 1], az = xp[i1 + 2] - xp[i0 + 2];
+                    double bx = xp[i2] - xp[i0], by = xp[i2 + 1] - xp[i0 + 1], bz = xp[i2 + 2] - xp[i0 + 2];
+                    double cx = (ay * bz) - (az * by), cy = (az * bx) - (ax * bz), cz = (ax * by) - (ay * bx);
+                    var squared = (cx * cx) + (cy * cy) + (cz * cz); // |N|^2 = 4 A^2
+                    if (!(squared > 0.0))
+                    {
+                        continue; // a collapsed triangle has no area for the air to push
+                    }
+
+                    if (gust is not null)
+                    {
+                        var centroid = new Vector3d(
+                            (xp[i0] + xp[i1] + xp[i2]) * Third, (xp[i0 + 1] + xp[i1 + 1] + xp[i2 + 1]) * Third, (xp[i0 + 2] + xp[i1 + 2] + xp[i2 + 2]) * Third);
+                        var g = gust.VelocityAt(time, centroid);
+                        ux = air.Velocity.X + g.X;
+                        uy = air.Velocity.Y + g.Y;
+                        uz = air.Velocity.Z + g.Z;
+                    }
+
+                    var rx = ux - ((vp[i0] + vp[i1] + vp[i2]) * Third);
+                    var ry = uy - ((vp[i0 + 1] + vp[i1 + 1] + vp[i2 + 1]) * Third);
+                    var rz = uz - ((vp[i0 + 2] + vp[i1 + 2] + vp[i2 + 2]) * Third);
+                    var d = (rx * cx) + (ry * cy) + (rz * cz); // v_n |N|
+                    double fx, fy, fz;
+                    if (lift != 0.0 && d != 0.0)
+                    {
+                        // T = |N|^2 v_rel - d N = |N|^2 r_t and Q = |N| |T| (no division on the way), then one division:
+                        // R = 1 / (Q |N|^2), 1 / |N|^2 = Q R, and the lift's A v_n (t n - (v_n / t) r_t) =
+                        // (d / 2) R (|T|^2 N - d |N|^2 T).
+                        double tx = (squared * rx) - (d * cx), ty = (squared * ry) - (d * cy), tz = (squared * rz) - (d * cz);
+                        var tt = (tx * tx) + (ty * ty) + (tz * tz);
+                        var q = Math.Sqrt(squared * tt);
+                        if (q > FlowAlongNormal * Math.Abs(d) * squared)
+                        {
+                            var r = 1.0 / (q * squared);
+                            var k = 0.5 * lift * d * r;
+                            var alongN = (0.5 * drag * Math.Abs(d) * d * (q * r)) + (k * tt);
+                            var inPlane = k * d * squared;
+                            fx = (alongN * cx) - (inPlane * tx);
+                            fy = (alongN * cy) - (inPlane * ty);
+                            fz = (alongN * cz) - (inPlane * tz);
+                        }
+                        else
+                        {
+                            var alongN = 0.5 * drag * Math.Abs(d) * d / squared;
+                            fx = alongN * cx;
+                            fy = alongN * cy;
+                            fz = alongN * cz;
+                        }
+                    }
+                    else
+                    {
+                        // A |v_n| v_n n = (|N| / 2) |d| d N / |N|^3 = |d| d N / (2 |N|^2): no square root.
+                        var alongN = 0.5 * drag * Math.Abs(d) * d / squared;
+                        fx = alongN * cx;
+                        fy = alongN * cy;
+                        fz = alongN * cz;
+                    }
+
+                    fp[i0] += fx;
+                    fp[i0 + 1] += fy;
+                    fp[i0 + 2] += fz;
+                    fp[i1] += fx;
+                    fp[i1 + 1] += fy;
+                    fp[i1 + 2] += fz;
+                    fp[i2] += fx;
+                    fp[i2 + 1] += fy;
+                    fp[i2 + 2] += fz;
+                }
+            }
+        }
     }
 
     /// <inheritdoc />
@@ -122,111 +212,38 @@ public sealed class TriangleAerodynamics : IForceGenerator, IBoundForce, IJacobi
             _linear = new double[LinearStride * (_corners.Length / 3)];
         }
 
-        // The forces go to a scratch nobody reads: Evaluate computes n and |v_n| on the way.
-        Evaluate(state, Span<double>.Empty, velocityScale, _linear);
+        // Per triangle n and K = (b / 9) rho C_d A |v_n| (once a step: the square roots cost little here).
+        var air = _air;
+        var scale = velocityScale * air.Density * air.DragCoefficient / 9.0;
+        var x = state.Positions;
+        var v = state.Velocities;
+        for (var t = 0; t < _count; t++)
+        {
+            int i0 = _corners[3 * t], i1 = _corners[(3 * t) + 1], i2 = _corners[(3 * t) + 2];
+            Vector3d x0 = Read(x, i0), x1 = Read(x, i1), x2 = Read(x, i2);
+            var cross = Vector3d.Cross(x1 - x0, x2 - x0);
+            var twice = cross.Length;
+            var l = _linear.AsSpan(LinearStride * t, LinearStride);
+            if (!(twice > 0.0))
+            {
+                l.Clear();
+                continue;
+            }
+
+            var n = cross / twice;
+            var centroid = (x0 + x1 + x2) * Third;
+            var relative = air.VelocityAt(state.Time, centroid) - ((Read(v, i0) + Read(v, i1) + Read(v, i2)) * Third);
+            l[0] = n.X;
+            l[1] = n.Y;
+            l[2] = n.Z;
+            l[3] = scale * 0.5 * twice * Math.Abs(Vector3d.Dot(relative, n));
+        }
+
         _linearized.Record(_count, 0);
     }
 
-    /// <summary>
-    /// The forces of every triangle into <paramref name="forces"/> (when not empty), and, when
-    /// <paramref name="linear"/> is not empty, each triangle's n and K = b rho C_d A |v_n| / 9 into it.
-    /// </summary>
-    private unsafe void Evaluate(in ParticleState state, Span<double> forces, double velocityScale, Span<double> linear)
-    {
-        var air = _air;
-        var drag = 0.5 * air.Density * air.DragCoefficient / 3.0;     // a third to each corner, folded in
-        var lift = 0.5 * air.Density * air.LiftCoefficient / 3.0;
-        var jacobian = velocityScale * 2.0 * drag / 3.0;               // (b / 9) rho C_d A |v_n| = b 2 drag A |v_n| / 3
-        var gust = air.Gust;
-        double ux = air.Velocity.X, uy = air.Velocity.Y, uz = air.Velocity.Z;
-        var time = state.Time;
-        var write = !forces.IsEmpty;
-        var keep = !linear.IsEmpty;
-
-        // CheckSizes: the buffers hold every particle, and every corner is one (checked in Add); linear holds _count.
-        fixed (double* xp = &MemoryMarshal.GetReference(state.Positions), vp = &MemoryMarshal.GetReference(state.Velocities))
-        fixed (double* fp = forces, lp = linear)
-        fixed (int* corners = _corners)
-        {
-            for (var t = 0; t < _count; t++)
-            {
-                int i0 = 3 * corners[3 * t], i1 = 3 * corners[(3 * t) + 1], i2 = 3 * corners[(3 * t) + 2];
-                double ax = xp[i1] - xp[i0], ay = xp[i1 + 1] - xp[i0 + 1], az = xp[i1 + 2] - xp[i0 + 2];
-                double bx = xp[i2] - xp[i0], by = xp[i2 + 1] - xp[i0 + 1], bz = xp[i2 + 2] - xp[i0 + 2];
-                double cx = (ay * bz) - (az * by), cy = (az * bx) - (ax * bz), cz = (ax * by) - (ay * bx);
-                var twice = Math.Sqrt((cx * cx) + (cy * cy) + (cz * cz)); // 2 A
-                if (!(twice > 0.0))
-                {
-                    if (keep)
-                    {
-                        lp[LinearStride * t] = lp[(LinearStride * t) + 1] = lp[(LinearStride * t) + 2] = lp[(LinearStride * t) + 3] = 0.0;
-                    }
-
-                    continue; // a collapsed triangle has no area for the air to push
-                }
-
-                var inverse = 1.0 / twice;
-                double nx = cx * inverse, ny = cy * inverse, nz = cz * inverse;
-                var area = 0.5 * twice;
-                if (gust is not null)
-                {
-                    var centroid = new Vector3d(
-                        (xp[i0] + xp[i1] + xp[i2]) / 3.0, (xp[i0 + 1] + xp[i1 + 1] + xp[i2 + 1]) / 3.0, (xp[i0 + 2] + xp[i1 + 2] + xp[i2 + 2]) / 3.0);
-                    var g = gust.VelocityAt(time, centroid);
-                    ux = air.Velocity.X + g.X;
-                    uy = air.Velocity.Y + g.Y;
-                    uz = air.Velocity.Z + g.Z;
-                }
-
-                var rx = ux - ((vp[i0] + vp[i1] + vp[i2]) / 3.0);
-                var ry = uy - ((vp[i0 + 1] + vp[i1 + 1] + vp[i2 + 1]) / 3.0);
-                var rz = uz - ((vp[i0 + 2] + vp[i1 + 2] + vp[i2 + 2]) / 3.0);
-                var vn = (rx * nx) + (ry * ny) + (rz * nz);
-                var speedN = Math.Abs(vn);
-                if (keep)
-                {
-                    var l = lp + (LinearStride * t);
-                    l[0] = nx;
-                    l[1] = ny;
-                    l[2] = nz;
-                    l[3] = jacobian * area * speedN;
-                }
-
-                if (!write)
-                {
-                    continue;
-                }
-
-                // A third of F_d along n, then a third of F_l.
-                var alongN = drag * area * speedN * vn;
-                double fx = alongN * nx, fy = alongN * ny, fz = alongN * nz;
-                if (lift != 0.0 && vn != 0.0)
-                {
-                    double tx = rx - (vn * nx), ty = ry - (vn * ny), tz = rz - (vn * nz);
-                    var across = Math.Sqrt((tx * tx) + (ty * ty) + (tz * tz));
-                    if (across > FlowAlongNormal * speedN)
-                    {
-                        var c = lift * area * vn;
-                        var inPlane = c * vn / across;
-                        var normal = c * across;
-                        fx += (normal * nx) - (inPlane * tx);
-                        fy += (normal * ny) - (inPlane * ty);
-                        fz += (normal * nz) - (inPlane * tz);
-                    }
-                }
-
-                fp[i0] += fx;
-                fp[i0 + 1] += fy;
-                fp[i0 + 2] += fz;
-                fp[i1] += fx;
-                fp[i1 + 1] += fy;
-                fp[i1 + 2] += fz;
-                fp[i2] += fx;
-                fp[i2 + 1] += fy;
-                fp[i2 + 2] += fz;
-            }
-        }
-    }
+    private static Vector3d Read(ReadOnlySpan<double> values, int particle) =>
+        new(values[3 * particle], values[(3 * particle) + 1], values[(3 * particle) + 2]);
 
     /// <inheritdoc />
     public void AddJacobianProduct(ReadOnlySpan<double> w, Span<double> result)

@@ -43,28 +43,27 @@ internal static class DeterministicTrig
     public static double Sin(double x)
     {
         var quadrant = Reduce(x, out var r);
-        return quadrant switch
-        {
-            0 => SinKernel(r),
-            1 => CosKernel(r),
-            2 => -SinKernel(r),
-            3 => -CosKernel(r),
-            _ => double.NaN,
-        };
+        return Select(quadrant, SinKernel(r), CosKernel(r));
     }
 
     /// <summary>cos x (NaN for a non-finite x or |x| beyond 1e15).</summary>
     public static double Cos(double x)
     {
         var quadrant = Reduce(x, out var r);
-        return quadrant switch
-        {
-            0 => CosKernel(r),
-            1 => -SinKernel(r),
-            2 => -CosKernel(r),
-            3 => SinKernel(r),
-            _ => double.NaN,
-        };
+        return Select(quadrant + 1, SinKernel(r), CosKernel(r));
+    }
+
+    /// <summary>
+    /// sin(r + q pi/2) from sin r and cos r: quadrant 0 sin, 1 cos, 2 -sin, 3 -cos, chosen by bits rather than by
+    /// branches (the quadrant of a gust's phase changes from one triangle to the next, and a mispredicted branch costs
+    /// more than both kernels). A negative quadrant (x not reducible) gives NaN.
+    /// </summary>
+    private static double Select(int quadrant, double sin, double cos)
+    {
+        var odd = -(long)(quadrant & 1); // all ones for cos
+        var bits = (BitConverter.DoubleToInt64Bits(sin) & ~odd) | (BitConverter.DoubleToInt64Bits(cos) & odd);
+        bits ^= (long)(quadrant & 2) << 62; // the sign bit for quadrants 2 and 3
+        return quadrant < 0 ? double.NaN : BitConverter.Int64BitsToDouble(bits);
     }
 
     /// <summary>k mod 4 (0 to 3) and r = x - k pi/2, or -1 where x cannot be reduced.</summary>
