@@ -215,8 +215,8 @@ public sealed class TriangleAerodynamics : IForceGenerator, IBoundForce, IJacobi
         // Per triangle n and K = (b / 9) rho C_d A |v_n| (once a step: the square roots cost little here).
         var air = _air;
         var scale = velocityScale * air.Density * air.DragCoefficient / 9.0;
-        var x = state.Positions;
-        var v = state.Velocities;
+        var x = state.Positions.ForReading();
+        var v = state.Velocities.ForReading();
         for (var t = 0; t < _count; t++)
         {
             int i0 = _corners[3 * t], i1 = _corners[(3 * t) + 1], i2 = _corners[(3 * t) + 2];
@@ -242,7 +242,8 @@ public sealed class TriangleAerodynamics : IForceGenerator, IBoundForce, IJacobi
         _linearized.Record(_count, 0);
     }
 
-    private static Vector3d Read(ReadOnlySpan<double> values, int particle) =>
+    // A Span, not a ReadOnlySpan: the read-only indexer does not bind on Mono (Numerics/ReadOnlySpans).
+    private static Vector3d Read(Span<double> values, int particle) =>
         new(values[3 * particle], values[(3 * particle) + 1], values[(3 * particle) + 2]);
 
     /// <inheritdoc />
@@ -341,7 +342,7 @@ public sealed class TriangleAerodynamics : IForceGenerator, IBoundForce, IJacobi
         }
     }
 
-    private static void Add(Span<double> destination, int offset, ReadOnlySpan<double> block)
+    private static void Add(Span<double> destination, int offset, Span<double> block)
     {
         for (var k = 0; k < 9; k++)
         {
