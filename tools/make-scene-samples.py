@@ -139,6 +139,32 @@ def drape_and_slope():
     }
 
 
+def cloth_fold():
+    # A cloth of 24 x 24 cells of 2.5 cm (60 cm square) dropped off-centre over a sphere of radius 15 cm on the ground:
+    # it drapes and its sides fold onto themselves, kept 1 cm apart by self-collision.
+    n, h = 24, 0.025
+    cloth = [[round(-0.25 + j * h, 6), 0.4, round(-0.32 + i * h, 6)] for i in range(n + 1) for j in range(n + 1)]
+    cells = []
+    for i in range(n):
+        for j in range(n):
+            v = i * (n + 1) + j
+            cells += [[v, v + n + 1, v + 1], [v + 1, v + n + 1, v + n + 2]]
+    return {
+        "integrator": {"name": "xpbd", "substeps": 10},
+        "dt": 1 / 60,
+        "duration": 4,
+        "objects": [
+            {"type": "cloth", "mesh": {"vertices": cloth, "triangles": cells}, "density": 0.2,
+             "stretch": {"modulus": 1000, "poisson": 0.3}, "bending": {"rigidity": 0.00001},
+             "thickness": 0.01, "selfCollision": True},
+        ],
+        "colliders": [
+            {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "friction": 0.5},
+            {"type": "sphere", "center": [0, 0.15, 0], "radius": 0.15, "friction": 0.5},
+        ],
+    }
+
+
 dump("samples/scenes/rope-bridge.json", [
     "A rope bridge: two ropes of 21 particles (2 kg each) joined by cables 5 % longer than their spacing, pinned at",
     "both ends 4 m apart; planks are rods across, diagonal springs brace it, and a 35 kg walker (343 N on each rope)",
@@ -242,3 +268,6 @@ dump("samples/scenes/ropes.json", [
 dump("samples/scenes/drape-and-slope.json", [
     "A cloth of 16 x 16 cells dropped over a boulder given as an OBJ mesh (boulder.obj, 320 facets) and six balls sliding",
     "down a terrain (a height field) beside it. Written by tools/make-scene-samples.py."], drape_and_slope())
+dump("samples/scenes/cloth-fold.json", [
+    "A cloth of 24 x 24 cells dropped off-centre over a sphere: it drapes and folds onto itself, and self-collision",
+    "(thickness 1 cm) keeps it from passing through itself. Written by tools/make-scene-samples.py."], cloth_fold())

@@ -522,6 +522,18 @@ namespace ParticlePhysics.RuntimeComparison
 
                 Print("scene/flag-in-wind/" + name, StateHash(flagWorld, flagIntegrator));
             }
+
+            // A cloth folding onto itself over a sphere: self-collision's grid, its particle-triangle and edge-edge
+            // projections (one second, folds included).
+            var fold = Scene.Load("samples/scenes/cloth-fold.json");
+            var foldWorld = fold.Build();
+            var foldIntegrator = IntegratorCatalog.Create(fold.Settings.Integrator, substeps: fold.Settings.Substeps);
+            for (var step = 0; step < 60; step++)
+            {
+                foldWorld.Step(foldIntegrator, fold.Settings.TimeStep);
+            }
+
+            Print("scene/cloth-fold", StateHash(foldWorld, foldIntegrator));
         }
 
         // A decimal number of 1 to 25 digits (the first not 0), a point somewhere, an exponent from -300 to 280, from an LCG.

@@ -27,6 +27,7 @@ internal sealed class SceneBuilder
     private QuadraticBending? _bending;
     private ExcludedPairs? _meshEdges;
     private TriangleAerodynamics? _aerodynamics;
+    private readonly List<(int[] Triangles, double Thickness)> _selfCollisions = new();
 
     public SceneBuilder(ParticleWorld world, string file, SceneSettings settings)
     {
@@ -42,6 +43,9 @@ internal sealed class SceneBuilder
     public TriangleAerodynamics Aerodynamics => _aerodynamics ??= new TriangleAerodynamics(World, Settings.NewAir());
 
     public ParticleWorld World { get; }
+
+    /// <summary>A cloth's self-collision: its triangles (world particle indices) kept <paramref name="thickness"/> apart.</summary>
+    public void AddSelfCollision(int[] triangles, double thickness) => _selfCollisions.Add((triangles, thickness));
 
     /// <summary>The scene file, for errors found while building (a length left out that is not finite).</summary>
     public string File { get; }
@@ -143,6 +147,11 @@ internal sealed class SceneBuilder
         if (_rods is not null)
         {
             world.AddConstraints(_rods);
+        }
+
+        foreach (var (triangles, thickness) in _selfCollisions)
+        {
+            world.AddConstraints(new ClothSelfCollision(world, triangles, thickness));
         }
 
         if (_obstacles.Count > 0 || settings.ParticleCollisions)

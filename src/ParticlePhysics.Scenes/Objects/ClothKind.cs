@@ -17,8 +17,9 @@ namespace ParticlePhysics.Scenes.Objects;
 /// {"modulus": Y, "poisson": nu} (the membrane, default {"modulus": 1000, "poisson": 0.3}), each with "damping"
 /// (N s/m: the springs' axial damping, or the membrane's viscosity); <c>bending</c> {"rigidity": D} (N m);
 /// <c>velocities</c> (per vertex); <c>pinned</c> (vertex indices); <c>thickness</c> (m: the particles' radius is half
-/// of it); <c>aerodynamics</c> (default false: the scene's <c>air</c> pushes on its triangles). <c>selfCollision</c> and
-/// <c>tear</c> arrive with the rest of the issue "cloth in the world".
+/// of it); <c>aerodynamics</c> (default false: the scene's <c>air</c> pushes on its triangles); <c>selfCollision</c>
+/// (default false: no particle comes closer than the thickness to a triangle of the cloth that is not its neighbour,
+/// <see cref="Contacts.ClothSelfCollision"/>; needs a thickness). <c>tear</c> arrives with the rest of the issue "cloth in the world".
 /// </summary>
 internal sealed class ClothKind : ISceneObjectKind
 {
@@ -26,7 +27,7 @@ internal sealed class ClothKind : ISceneObjectKind
 
     public SceneObject Read(ObjectReader reader, SceneReadContext context)
     {
-        foreach (var later in new[] { "selfCollision", "tear" })
+        foreach (var later in new[] { "tear" })
         {
             if (reader.Get(later) is { } value)
             {
@@ -96,6 +97,12 @@ internal sealed class ClothKind : ISceneObjectKind
 
         var thickness = reader.Number("thickness", 0.0, ValueRule.NonNegative, "m");
         var aerodynamics = reader.Boolean("aerodynamics", false);
+        var selfCollision = reader.Boolean("selfCollision", false);
+        if (selfCollision && !(thickness > 0))
+        {
+            throw reader.Error(reader.Get("selfCollision")!.Value, reader.PathOf("selfCollision"), "needs the cloth's \"thickness\" (m, above 0): no particle comes closer than it to a triangle of the cloth that is not its neighbour", showValue: false);
+        }
+
         foreach (var m in builder.ParticleMasses())
         {
             if (!(m > 0) || double.IsInfinity(1.0 / m) || double.IsInfinity(m))
@@ -104,7 +111,7 @@ internal sealed class ClothKind : ISceneObjectKind
             }
         }
 
-        return new ClothObject(builder, particleVelocities, thickness / 2, aerodynamics);
+        return new ClothObject(builder, particleVelocities, thickness, aerodynamics, selfCollision);
     }
 
     private static (double[] Vertices, int[] Triangles, string? Obj) ReadMesh(ObjectReader mesh, SceneReadContext context)
@@ -234,16 +241,20 @@ internal sealed class ClothKind : ISceneObjectKind
     {
         private readonly MeshClothBuilder _builder;
         private readonly Vector3d[] _velocities;
+        private readonly double _thickness;
         private readonly double _radius;
         private readonly bool _aerodynamics;
+        private readonly bool _selfCollision;
         private int _first;
 
-        public ClothObject(MeshClothBuilder builder, Vector3d[] velocities, double radius, bool aerodynamics)
+        public ClothObject(MeshClothBuilder builder, Vector3d[] velocities, double thickness, bool aerodynamics, bool selfCollision)
         {
             _builder = builder;
             _velocities = velocities;
-            _radius = radius;
+            _thickness = thickness;
+            _radius = thickness / 2;
             _aerodynamics = aerodynamics;
+            _selfCollision = selfCollision;
         }
 
         public override int ParticleCount => _builder.Mesh.ParticleCount;
@@ -283,6 +294,17 @@ internal sealed class ClothKind : ISceneObjectKind
                 builder.AddMeshEdge(_first + triangles[3 * t], _first + triangles[(3 * t) + 1]);
                 builder.AddMeshEdge(_first + triangles[(3 * t) + 1], _first + triangles[(3 * t) + 2]);
                 builder.AddMeshEdge(_first + triangles[(3 * t) + 2], _first + triangles[3 * t]);
+            }
+
+            if (_selfCollision)
+            {
+                for (var k = 0; k < triangles.Length; k++)
+                {
+                    triangles[k] += _first;
+                }
+
+                builder.AddSelfCollision(triangles, _thickness);
+                builder.Count("self-colliding triangles", _builder.Mesh.TriangleCount);
             }
         }
     }

@@ -1,0 +1,178 @@
+using System;
+
+namespace ParticlePhysics.Contacts;
+
+/// <summary>
+/// A hash grid of boxes (a cloth's triangles or edges, each grown by the thickness): each box is listed in every cell
+/// it covers, so that a small query box visits only the few cells it covers and meets each listed box once.
+/// </summary>
+/// <remarks>
+/// Once: a box is met in the cell that holds the low corner of its overlap with the query box, which both cover, and
+/// skipped in every other cell (and in cells that only share a hash bucket with it). Built by a counting sort over
+/// the buckets, items in index order within a bucket, so queries meet items in the same order on every runtime. The
+/// arrays grow when a build needs more entries than they hold, and are kept: a settled cloth builds without
+/// allocating.
+/// </remarks>
+internal sealed class BoxGrid
+{
+    /// <summary>The most cell entries one build may list (a bound on its work and memory).</summary>
+    public const int MaxEntries = 1 << 26;
+
+    private int[] _start = new int[17];
+    private int[] _items = Array.Empty<int>();
+    private int[] _entryBucket = Array.Empty<int>();
+    private int[] _entryItem = Array.Empty<int>();
+    private double[] _boxes = Array.Empty<double>();
+    private double _inverseCell;
+    private int _count;
+
+    /// <summary>The number of boxes of the last build.</summary>
+    public int Count => _count;
+
+    /// <summary>Starts a build of <paramref name="count"/> boxes in cells of size <paramref name="cell"/>.</summary>
+    public void Begin(int count, double cell)
+    {
+        _count = count;
+        _inverseCell = 1.0 / cell;
+        if (_boxes.Length < 6 * count)
+        {
+            _boxes = new double[6 * count];
+        }
+
+        var buckets = 16;
+        while (buckets < 2 * count)
+        {
+            buckets *= 2;
+        }
+
+        if (_start.Length < buckets + 1)
+        {
+            _start = new int[buckets + 1];
+        }
+    }
+
+    /// <summary>Sets box <paramref name="item"/> (during a build).</summary>
+    public void Set(int item, Vector3d low, Vector3d high)
+    {
+        var o = 6 * item;
+        _boxes[o] = low.X;
+        _boxes[o + 1] = low.Y;
+        _boxes[o + 2] = low.Z;
+        _boxes[o + 3] = high.X;
+        _boxes[o + 4] = high.Y;
+        _boxes[o + 5] = high.Z;
+    }
+
+    /// <summary>Lists every box in the cells it covers; the build is then ready for queries.</summary>
+    public void End()
+    {
+        long counted = 0;
+        for (var i = 0; i < _count; i++)
+        {
+            var o = 6 * i;
+            counted += (long)(Cell(_boxes[o + 3]) - Cell(_boxes[o]) + 1) * (Cell(_boxes[o + 4]) - Cell(_boxes[o + 1]) + 1) * (Cell(_boxes[o + 5]) - Cell(_boxes[o + 2]) + 1);
+        }
+
+        if (counted > MaxEntries)
+        {
+            throw new InvalidOperationException(
+                $"Self-collision: the cloth's boxes cover {counted} grid cells, more than the {MaxEntries} allowed; the cloth is spread over far more than its size (it may have diverged).");
+        }
+
+        var entries = (int)counted;
+
+        if (_entryItem.Length < entries)
+        {
+            var size = Math.Max(entries, 2 * _entryItem.Length);
+            _entryItem = new int[size];
+            _entryBucket = new int[size];
+            _items = new int[size];
+        }
+
+        var mask = _start.Length - 2;
+        Array.Clear(_start, 0, _start.Length);
+        var e = 0;
+        for (var i = 0; i < _count; i++)
+        {
+            var o = 6 * i;
+            int x1 = Cell(_boxes[o + 3]), y0 = Cell(_boxes[o + 1]), y1 = Cell(_boxes[o + 4]), z0 = Cell(_boxes[o + 2]), z1 = Cell(_boxes[o + 5]);
+            for (var cx = Cell(_boxes[o]); cx <= x1; cx++)
+            {
+                for (var cy = y0; cy <= y1; cy++)
+                {
+                    for (var cz = z0; cz <= z1; cz++)
+                    {
+                        var bucket = Hash(cx, cy, cz) & mask;
+                        _entryBucket[e] = bucket;
+                        _entryItem[e++] = i;
+                        _start[bucket + 1]++;
+                    }
+                }
+            }
+        }
+
+        var buckets = _start.Length - 1;
+        for (var b = 0; b < buckets; b++)
+        {
+            _start[b + 1] += _start[b];
+        }
+
+        // Filled from the back, each bucket's end moves down to its first entry, which then sits one place up.
+        for (var k = e - 1; k >= 0; k--)
+        {
+            _items[--_start[_entryBucket[k] + 1]] = _entryItem[k];
+        }
+
+        for (var b = 0; b < buckets; b++)
+        {
+            _start[b] = _start[b + 1];
+        }
+
+        _start[buckets] = e;
+    }
+
+    /// <summary>The range of cells a query box covers.</summary>
+    public void Cells(Vector3d low, Vector3d high, out int x0, out int x1, out int y0, out int y1, out int z0, out int z1)
+    {
+        x0 = Cell(low.X);
+        x1 = Cell(high.X);
+        y0 = Cell(low.Y);
+        y1 = Cell(high.Y);
+        z0 = Cell(low.Z);
+        z1 = Cell(high.Z);
+    }
+
+    /// <summary>The first and one-past-last entry of the bucket of cell (cx, cy, cz).</summary>
+    public void Bucket(int cx, int cy, int cz, out int first, out int end)
+    {
+        var bucket = Hash(cx, cy, cz) & (_start.Length - 2);
+        first = _start[bucket];
+        end = _start[bucket + 1];
+    }
+
+    /// <summary>The item of entry <paramref name="entry"/>.</summary>
+    public int Item(int entry) => _items[entry];
+
+    /// <summary>
+    /// Whether item <paramref name="item"/>'s box overlaps the query box and cell (cx, cy, cz) is the one to meet it in.
+    /// </summary>
+    public bool MeetsHere(int item, Vector3d low, Vector3d high, int cx, int cy, int cz)
+    {
+        var o = 6 * item;
+        double lx = _boxes[o], ly = _boxes[o + 1], lz = _boxes[o + 2];
+        if (lx > high.X || ly > high.Y || lz > high.Z || _boxes[o + 3] < low.X || _boxes[o + 4] < low.Y || _boxes[o + 5] < low.Z)
+        {
+            return false;
+        }
+
+        return Cell(lx > low.X ? lx : low.X) == cx && Cell(ly > low.Y ? ly : low.Y) == cy && Cell(lz > low.Z ? lz : low.Z) == cz;
+    }
+
+    private int Cell(double coordinate)
+    {
+        var scaled = coordinate * _inverseCell;
+        return scaled >= 1e9 ? 1_000_000_000 : scaled <= -1e9 ? -1_000_000_000 : (int)Math.Floor(scaled);
+    }
+
+    private static int Hash(int x, int y, int z) => unchecked((x * 73856093) ^ (y * 19349663) ^ (z * 83492791)) & int.MaxValue;
+}
