@@ -35,7 +35,7 @@ namespace ParticlePhysics.Contacts;
 /// the step's end, and each moved particle's velocity changes by its move over the step, as xpbd's would.
 /// </para>
 /// </remarks>
-public sealed partial class ClothSelfCollision : IConstraintSet
+public sealed partial class ClothSelfCollision : IStatefulConstraintSet
 {
     private const int ResolvePasses = 16;
 
@@ -51,6 +51,7 @@ public sealed partial class ClothSelfCollision : IConstraintSet
     private readonly BoxGrid _grid = new();
     private double[] _before = Array.Empty<double>();
     private int _contacts;
+    private int _contactsBefore; // what LastContactCount showed before the step, for a failed step to restore
 
     /// <summary>
     /// Self-collision for the triangles <paramref name="triangles"/> (three particle indices of <paramref name="world"/>
@@ -125,7 +126,10 @@ public sealed partial class ClothSelfCollision : IConstraintSet
     /// <summary>The number of triangles.</summary>
     public int TriangleCount => _triangles.Length / 3;
 
-    /// <summary>How many particle-triangle constraints the last call projected (those that were violated).</summary>
+    /// <summary>
+    /// How many particle-triangle and edge-edge constraints the last call projected (those that were violated); a failed
+    /// step puts back what it showed before.
+    /// </summary>
     public int LastContactCount => _contacts;
 
     /// <summary>
@@ -143,6 +147,17 @@ public sealed partial class ClothSelfCollision : IConstraintSet
         Guard.ParticleIndex(particle, _edgeStart.Length - 1, nameof(particle));
         return Filtered(particle, 3 * triangle);
     }
+
+    /// <inheritdoc />
+    public void BeginStep() => _contactsBefore = _contacts;
+
+    /// <inheritdoc />
+    public void CommitStep()
+    {
+    }
+
+    /// <inheritdoc />
+    public void DiscardStep() => _contacts = _contactsBefore;
 
     /// <inheritdoc />
     public void Resolve(in ConstraintContext context)

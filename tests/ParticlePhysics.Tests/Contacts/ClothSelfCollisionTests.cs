@@ -102,6 +102,36 @@ public class ClothSelfCollisionTests
     }
 
     [Fact]
+    public void A_failed_step_leaves_the_cloth_and_the_set_as_they_were()
+    {
+        var drop = Strip(selfCollision: true);
+        var xpbd = new Xpbd(10);
+        for (var s = 0; s < 150; s++)
+        {
+            drop.Cloth.System.Step(xpbd, 1.0 / 60);
+        }
+
+        var contacts = drop.Self!.LastContactCount;
+        var state = StateMetrics.BitHash(drop.Cloth.System.State);
+        var failing = new FailingConstraints();
+        drop.Cloth.System.AddConstraints(failing);
+        Assert.Throws<InvalidOperationException>(() => drop.Cloth.System.Step(xpbd, 1.0 / 60));
+        Assert.Equal(state, StateMetrics.BitHash(drop.Cloth.System.State));
+        Assert.Equal(contacts, drop.Self.LastContactCount);
+    }
+
+    private sealed class FailingConstraints : IConstraintSet
+    {
+        public void Resolve(in ConstraintContext context) => throw new InvalidOperationException("fails");
+
+        public void Project(in ConstraintContext context) => throw new InvalidOperationException("fails");
+
+        public void SolveVelocities(in ConstraintContext context)
+        {
+        }
+    }
+
+    [Fact]
     public void The_cloth_fold_sample_scene_holds_its_golden_bits()
     {
         // The same hash is compared between Mono and CoreCLR by .ci/mono (tests/mono/RuntimeComparison.cs).
