@@ -242,7 +242,6 @@ internal sealed class ClothKind : ISceneObjectKind
         private readonly MeshClothBuilder _builder;
         private readonly Vector3d[] _velocities;
         private readonly double _thickness;
-        private readonly double _radius;
         private readonly bool _aerodynamics;
         private readonly bool _selfCollision;
         private int _first;
@@ -252,7 +251,6 @@ internal sealed class ClothKind : ISceneObjectKind
             _builder = builder;
             _velocities = velocities;
             _thickness = thickness;
-            _radius = thickness / 2;
             _aerodynamics = aerodynamics;
             _selfCollision = selfCollision;
         }
@@ -262,11 +260,11 @@ internal sealed class ClothKind : ISceneObjectKind
         public override void AddParticles(SceneBuilder builder)
         {
             _first = _builder.AddParticles(builder.World, _velocities);
-            if (_radius > 0)
+            if (_thickness > 0)
             {
                 for (var i = 0; i < ParticleCount; i++)
                 {
-                    builder.World.SetRadius(_first + i, _radius);
+                    builder.World.SetRadius(_first + i, _thickness / 2); // the contract: the collision radius is half the thickness
                 }
             }
         }

@@ -26,9 +26,6 @@ internal sealed class BoxGrid
     private double _inverseCell;
     private int _count;
 
-    /// <summary>The number of boxes of the last build.</summary>
-    public int Count => _count;
-
     /// <summary>Starts a build of <paramref name="count"/> boxes in cells of size <paramref name="cell"/>.</summary>
     public void Begin(int count, double cell)
     {
@@ -131,32 +128,90 @@ internal sealed class BoxGrid
         _start[buckets] = e;
     }
 
-    /// <summary>The range of cells a query box covers.</summary>
-    public void Cells(Vector3d low, Vector3d high, out int x0, out int x1, out int y0, out int y1, out int z0, out int z1)
-    {
-        x0 = Cell(low.X);
-        x1 = Cell(high.X);
-        y0 = Cell(low.Y);
-        y1 = Cell(high.Y);
-        z0 = Cell(low.Z);
-        z1 = Cell(high.Z);
-    }
-
-    /// <summary>The first and one-past-last entry of the bucket of cell (cx, cy, cz).</summary>
-    public void Bucket(int cx, int cy, int cz, out int first, out int end)
-    {
-        var bucket = Hash(cx, cy, cz) & (_start.Length - 2);
-        first = _start[bucket];
-        end = _start[bucket + 1];
-    }
-
-    /// <summary>The item of entry <paramref name="entry"/>.</summary>
-    public int Item(int entry) => _items[entry];
-
     /// <summary>
-    /// Whether item <paramref name="item"/>'s box overlaps the query box and cell (cx, cy, cz) is the one to meet it in.
+    /// The boxes that overlap the query box (low, high), each once: cell by cell (x, then y, then z), in index order
+    /// within a cell.
     /// </summary>
-    public bool MeetsHere(int item, Vector3d low, Vector3d high, int cx, int cy, int cz)
+    public Query Overlapping(Vector3d low, Vector3d high) => new(this, low, high);
+
+    /// <summary>An enumeration of <see cref="Overlapping"/>; allocation-free (a ref struct over the grid's arrays).</summary>
+    public ref struct Query
+    {
+        private readonly BoxGrid _grid;
+        private readonly Vector3d _low;
+        private readonly Vector3d _high;
+        private readonly int _x1;
+        private readonly int _y0;
+        private readonly int _y1;
+        private readonly int _z0;
+        private readonly int _z1;
+        private int _cx;
+        private int _cy;
+        private int _cz;
+        private int _entry;
+        private int _end;
+
+        internal Query(BoxGrid grid, Vector3d low, Vector3d high)
+        {
+            _grid = grid;
+            _low = low;
+            _high = high;
+            _cx = grid.Cell(low.X);
+            _x1 = grid.Cell(high.X);
+            _y0 = grid.Cell(low.Y);
+            _y1 = grid.Cell(high.Y);
+            _z0 = grid.Cell(low.Z);
+            _z1 = grid.Cell(high.Z);
+            _cy = _y0;
+            _cz = _z0 - 1; // MoveNext steps to the first cell
+            _entry = 0;
+            _end = 0;
+            Current = -1;
+        }
+
+        /// <summary>The item met.</summary>
+        public int Current { get; private set; }
+
+        /// <summary>For <c>foreach</c>.</summary>
+        public Query GetEnumerator() => this;
+
+        /// <summary>Steps to the next overlapping box; false when there is none.</summary>
+        public bool MoveNext()
+        {
+            while (true)
+            {
+                while (_entry < _end)
+                {
+                    var item = _grid._items[_entry++];
+                    if (_grid.MeetsHere(item, _low, _high, _cx, _cy, _cz))
+                    {
+                        Current = item;
+                        return true;
+                    }
+                }
+
+                if (++_cz > _z1)
+                {
+                    _cz = _z0;
+                    if (++_cy > _y1)
+                    {
+                        _cy = _y0;
+                        if (++_cx > _x1)
+                        {
+                            return false;
+                        }
+                    }
+                }
+
+                var bucket = Hash(_cx, _cy, _cz) & (_grid._start.Length - 2);
+                _entry = _grid._start[bucket];
+                _end = _grid._start[bucket + 1];
+            }
+        }
+    }
+
+    // Whether item's box overlaps the query box and cell (cx, cy, cz) is the one to meet it in.
+    private bool MeetsHere(int item, Vector3d low, Vector3d high, int cx, int cy, int cz)
     {
         var o = 6 * item;
         double lx = _boxes[o], ly = _boxes[o + 1], lz = _boxes[o + 2];

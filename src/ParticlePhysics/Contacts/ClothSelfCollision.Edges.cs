@@ -32,34 +32,12 @@ public sealed partial class ClothSelfCollision
         {
             int a = _edges[2 * e], b = _edges[(2 * e) + 1];
             var (low, high) = EdgeBox(x, start, 2 * e);
-            _grid.Cells(low, high, out var x0, out var x1, out var y0, out var y1, out var z0, out var z1);
-            for (var cx = x0; cx <= x1; cx++)
+            foreach (var f in _grid.Overlapping(low, high))
             {
-                for (var cy = y0; cy <= y1; cy++)
+                int c = _edges[2 * f], d = _edges[(2 * f) + 1];
+                if (f > e && c != a && c != b && d != a && d != b && ProjectEdgePair(x, start, w, 2 * e, 2 * f, reach))
                 {
-                    for (var cz = z0; cz <= z1; cz++)
-                    {
-                        _grid.Bucket(cx, cy, cz, out var first, out var end);
-                        for (var k = first; k < end; k++)
-                        {
-                            var f = _grid.Item(k);
-                            if (f <= e)
-                            {
-                                continue;
-                            }
-
-                            int c = _edges[2 * f], d = _edges[(2 * f) + 1];
-                            if (c == a || c == b || d == a || d == b || !_grid.MeetsHere(f, low, high, cx, cy, cz))
-                            {
-                                continue;
-                            }
-
-                            if (ProjectEdgePair(x, start, w, 2 * e, 2 * f, reach))
-                            {
-                                _contacts++;
-                            }
-                        }
-                    }
+                    _contacts++;
                 }
             }
         }
@@ -162,10 +140,10 @@ public sealed partial class ClothSelfCollision
 
     private static double Clamp01(double value) => value < 0.0 ? 0.0 : value > 1.0 ? 1.0 : value;
 
-    /// <summary>The unique edges of the triangles (smaller particle first, in order of first appearance) and, per particle, the edges at it.</summary>
-    private static (int[] Edges, int[] Start, int[] At) Edges(int[] triangles, int count)
+    /// <summary>The unique edges of the triangles, two particles each (the smaller first), in order of first appearance.</summary>
+    private static int[] Edges(int[] triangles, int count)
     {
-        var seen = new System.Collections.Generic.Dictionary<long, int>();
+        var seen = new System.Collections.Generic.HashSet<long>();
         var edges = new System.Collections.Generic.List<int>();
         for (var k = 0; k < triangles.Length; k += 3)
         {
@@ -173,35 +151,14 @@ public sealed partial class ClothSelfCollision
             {
                 int p = triangles[k + j], q = triangles[k + ((j + 1) % 3)];
                 int lo = Math.Min(p, q), hi = Math.Max(p, q);
-                var key = ((long)lo * count) + hi;
-                if (!seen.ContainsKey(key))
+                if (seen.Add(((long)lo * count) + hi))
                 {
-                    seen.Add(key, edges.Count);
                     edges.Add(lo);
                     edges.Add(hi);
                 }
             }
         }
 
-        var start = new int[count + 1];
-        foreach (var p in edges)
-        {
-            start[p + 1]++;
-        }
-
-        for (var i = 0; i < count; i++)
-        {
-            start[i + 1] += start[i];
-        }
-
-        var at = new int[edges.Count];
-        var fill = (int[])start.Clone();
-        for (var e = 0; e < edges.Count; e += 2)
-        {
-            at[fill[edges[e]]++] = e;
-            at[fill[edges[e + 1]]++] = e;
-        }
-
-        return (edges.ToArray(), start, at);
+        return edges.ToArray();
     }
 }

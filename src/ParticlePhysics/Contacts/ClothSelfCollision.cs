@@ -20,19 +20,18 @@ namespace ParticlePhysics.Contacts;
 /// dl = -C / (w_p + sum b_k^2 w_k): momentum is kept, and a pinned particle (w = 0) is not moved.
 /// </para>
 /// <para>
-/// Why no edge-edge test: FleX and Obi keep a cloth off itself with particles alone, which lets it pass through
-/// itself wherever its particles are farther apart than their diameter; the particle-triangle constraint closes those
-/// gaps, and two edges can then cross only where both of their triangles' particles stay farther than h from the
-/// other's face, which the tests check does not happen while h is above the substep's moves.
+/// Edges are kept h apart too (ClothSelfCollision.Edges.cs): in a crease sharper than the thickness two triangles can
+/// cross with every particle farther than h from the other's face.
 /// </para>
 /// <para>
 /// Neighbours in the rest shape are filtered out, as FleX does: a particle never collides with a triangle it is a
-/// corner of, one whose corner it shares an edge with, or one that was closer than h to it at rest (they would push
-/// apart what the membrane holds together). Candidates come from a hash grid of the particles' end positions; each
-/// triangle asks the cells of its box over the substep grown by h and the largest move, so nothing that crossed a face
-/// is missed. The triangles are projected once per substep in their order and the particles of a cell in index order:
-/// the same bits on every runtime. Under a force-based integrator (<see cref="Resolve"/>) the same projection runs on
-/// the step's end, and each moved particle's velocity changes by its move over the step, as xpbd's would.
+/// corner of or one that was closer than h to it at rest (they would push apart what the membrane holds together).
+/// The next ring is not filtered: a crease at that scale is where triangles would cross. Candidates come from a
+/// <see cref="BoxGrid"/> of the triangles' boxes over the substep grown by h, each particle's box over the substep the
+/// query, so nothing that crossed a face is missed. The particles are projected once per substep in index order, each
+/// against its triangles in the grid's order: the same bits on every runtime. Under a force-based integrator
+/// (<see cref="Resolve"/>) the same projections sweep the step's end, and each moved particle's velocity changes by
+/// its move over the step, as xpbd's would.
 /// </para>
 /// </remarks>
 public sealed partial class ClothSelfCollision : IStatefulConstraintSet
@@ -43,8 +42,6 @@ public sealed partial class ClothSelfCollision : IStatefulConstraintSet
     private readonly int[] _particles;        // the set's particles, sorted, each once
     private readonly double[] _rest;          // their rest positions, 3 per world particle index (only theirs used)
     private readonly int[] _edges;            // the unique edges, two particles each, the smaller first
-    private readonly int[] _edgeStart;        // CSR over world particle indices: the edges at each particle
-    private readonly int[] _edgesAt;
     private readonly double _thickness;
     private readonly double _cellFloor;       // the mean rest edge: smaller cells only add cells to visit
 
@@ -110,7 +107,7 @@ public sealed partial class ClothSelfCollision : IStatefulConstraintSet
             }
         }
 
-        (_edges, _edgeStart, _edgesAt) = Edges(_triangles, count);
+        _edges = Edges(_triangles, count);
         var lengths = 0.0;
         for (var e = 0; e < _edges.Length; e += 2)
         {
@@ -134,8 +131,7 @@ public sealed partial class ClothSelfCollision : IStatefulConstraintSet
 
     /// <summary>
     /// Whether particle <paramref name="particle"/> and triangle <paramref name="triangle"/> are neighbours in the rest
-    /// shape, which never collide: a corner, a particle sharing an edge with a corner, or one closer than the
-    /// thickness at rest.
+    /// shape, which never collide: a corner, or one closer than the thickness at rest.
     /// </summary>
     public bool AreRestNeighbours(int particle, int triangle)
     {
@@ -144,7 +140,7 @@ public sealed partial class ClothSelfCollision : IStatefulConstraintSet
             throw new ArgumentOutOfRangeException(nameof(triangle), triangle, $"triangle must name one of the {TriangleCount} triangles; got {triangle}.");
         }
 
-        Guard.ParticleIndex(particle, _edgeStart.Length - 1, nameof(particle));
+        Guard.ParticleIndex(particle, _rest.Length / 3, nameof(particle));
         return Filtered(particle, 3 * triangle);
     }
 
@@ -163,7 +159,11 @@ public sealed partial class ClothSelfCollision : IStatefulConstraintSet
     public void Resolve(in ConstraintContext context)
     {
         var x = context.Positions;
-        EnsureCapacity(context.Count);
+        if (_before.Length < x.Length)
+        {
+            _before = new double[x.Length];
+        }
+
         x.CopyTo(_before);
 
         // A whole step moves the cloth much farther than a substep does: sweep until nothing is violated, at most
@@ -191,8 +191,6 @@ public sealed partial class ClothSelfCollision : IStatefulConstraintSet
     /// <inheritdoc />
     public void Project(in ConstraintContext context)
     {
-        var n = context.Count;
-        EnsureCapacity(n);
         var x = context.Positions;
         var start = context.StartPositions.ForReading();
         var w = context.InverseMasses.ForReading();
@@ -230,29 +228,12 @@ public sealed partial class ClothSelfCollision : IStatefulConstraintSet
         {
             Vector3d low = Read(x, p), high = low;
             Grow(ref low, ref high, Read(start, p));
-            _grid.Cells(low, high, out var x0, out var x1, out var y0, out var y1, out var z0, out var z1);
-            for (var cx = x0; cx <= x1; cx++)
+            foreach (var t in _grid.Overlapping(low, high))
             {
-                for (var cy = y0; cy <= y1; cy++)
+                var o = 3 * t;
+                if (_triangles[o] != p && _triangles[o + 1] != p && _triangles[o + 2] != p && ProjectPair(x, start, w, p, o, reach))
                 {
-                    for (var cz = z0; cz <= z1; cz++)
-                    {
-                        _grid.Bucket(cx, cy, cz, out var first, out var end);
-                        for (var k = first; k < end; k++)
-                        {
-                            var t = _grid.Item(k);
-                            var o = 3 * t;
-                            if (_triangles[o] == p || _triangles[o + 1] == p || _triangles[o + 2] == p || !_grid.MeetsHere(t, low, high, cx, cy, cz))
-                            {
-                                continue;
-                            }
-
-                            if (ProjectPair(x, start, w, p, o, reach))
-                            {
-                                _contacts++;
-                            }
-                        }
-                    }
+                    _contacts++;
                 }
             }
         }
@@ -371,14 +352,6 @@ public sealed partial class ClothSelfCollision : IStatefulConstraintSet
         bb = ((d11 * d20) - (d01 * d21)) / denominator;
         bc = ((d00 * d21) - (d01 * d20)) / denominator;
         ba = 1.0 - bb - bc;
-    }
-
-    private void EnsureCapacity(int count)
-    {
-        if (_before.Length < 3 * count)
-        {
-            _before = new double[3 * count];
-        }
     }
 
     private static void Grow(ref Vector3d low, ref Vector3d high, Vector3d p)
