@@ -22,7 +22,7 @@ public class RigidBodyTests
     }
 
     private const double Spacing = 0.1;
-    private static readonly Vector3d BoxSize = new(0.8, 0.4, 0.2); // 8 x 4 x 2 particles
+    private static readonly Vector3d _boxSize = new(0.8, 0.4, 0.2); // 8 x 4 x 2 particles
 
     /// <summary>A world with one rigid box of 8 x 4 x 2 particles of 1 kg in total, its frame the world's.</summary>
     internal static (ParticleWorld World, ShapeMatching Bodies) Box(Vector3d size, double totalMass = 1.0, Vector3d? center = null)
@@ -45,7 +45,7 @@ public class RigidBodyTests
     [Fact]
     public void A_box_spun_about_its_major_axis_keeps_its_angular_momentum_axis_and_shape_for_12_s()
     {
-        var (world, bodies) = Box(BoxSize);
+        var (world, bodies) = Box(_boxSize);
         world.AddForce(Gravity.Down(9.81));
         bodies.SetMotion(0, new Vector3d(1, 2, 0), new Vector3d(0, 0, 3)); // z: the major axis of an 8 x 4 x 2 box
         var l0 = AngularMomentum(world);
@@ -67,13 +67,13 @@ public class RigidBodyTests
         _output.WriteLine($"|L| drift {worst:E3}, axis {worstAxis:E3}, shape {worstShape:E3} m");
         Assert.True(worst < 1e-3, $"|L| drifted by {worst:E3} of itself");
         Assert.True(worstAxis < 1e-2, $"the spin axis moved by {worstAxis:E3}");
-        Assert.True(worstShape < 1e-6 * BoxSize.Length, $"the shape moved by {worstShape:E3} m");
+        Assert.True(worstShape < 1e-6 * _boxSize.Length, $"the shape moved by {worstShape:E3} m");
     }
 
     [Fact]
     public void A_box_spun_about_its_intermediate_axis_flips_when_eulers_equations_say()
     {
-        var (world, bodies) = Box(BoxSize);
+        var (world, bodies) = Box(_boxSize);
         var omega0 = new Vector3d(0.01, 3, 0.01);
         bodies.SetMotion(0, Vector3d.Zero, omega0); // the body frame is the world's at the start
         var xpbd = new Xpbd(10);
@@ -97,7 +97,7 @@ public class RigidBodyTests
     [Fact]
     public void A_body_in_free_flight_keeps_its_linear_momentum_and_falls_as_a_point_mass()
     {
-        var (world, bodies) = Box(BoxSize);
+        var (world, bodies) = Box(_boxSize);
         world.AddForce(Gravity.Down(9.81));
         bodies.SetMotion(0, new Vector3d(1, 2, 0.5), new Vector3d(1, 2, 3));
         var xpbd = new Xpbd(10);
