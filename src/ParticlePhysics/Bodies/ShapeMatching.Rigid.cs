@@ -6,24 +6,33 @@ namespace ParticlePhysics.Bodies;
 // Rigid bodies: the prediction along the rotation, the exact projection and the rigid velocity field (see the class remarks).
 public sealed partial class ShapeMatching
 {
-    private void ProjectRigid(int body, in ConstraintContext context)
+    /// <summary>
+    /// The rigid projection of a substep. With <paramref name="fromVelocities"/> (a force-based step's end) the angular
+    /// momentum is that of the end velocities about the start's offsets instead of the chords', and the velocities are
+    /// set to the rigid field at once: nothing comes between the projection and the velocities there.
+    /// </summary>
+    private void ProjectRigid(int body, in ConstraintContext context, bool fromVelocities = false)
     {
         var (first, end) = (_start[body], _start[body + 1]);
         var x0 = context.StartPositions;
         var x = context.Positions;
         var m = context.Masses;
         var w = context.InverseMasses;
-        var (_, c, restCentre) = Centres(first, end, x, m);
+        var (mass, c, restCentre) = Centres(first, end, x, m);
         var (_, c0, _) = Centres(first, end, x0, m);
 
         // The angular momentum of the prediction about the start's centre of mass: the start's spin plus the forces' torques.
         var inverseH = 1.0 / context.Dt;
+        var v = context.Velocities;
         var momentum = Vector3d.Zero;
+        var velocity = Vector3d.Zero;
         for (var k = first; k < end; k++)
         {
             var i = _particles[k];
             var start = At(x0, i);
-            momentum += m[i] * Vector3d.Cross(start - c0, (At(x, i) - start) * inverseH);
+            var vi = fromVelocities ? At(v, i) : (At(x, i) - start) * inverseH;
+            momentum += m[i] * Vector3d.Cross(start - c0, vi);
+            velocity += m[i] * vi;
         }
 
         // Turn by exp(omega h), omega = I^-1 L taken at the half-way orientation: the midpoint rule, second order.
@@ -46,6 +55,21 @@ public sealed partial class ShapeMatching
 
         _predicted[body] = q;
         _momentum[body] = momentum;
+        if (fromVelocities)
+        {
+            velocity /= mass;
+            var spin = AngularVelocity(first, end, m, restCentre, q, momentum);
+            for (var k = first; k < end; k++)
+            {
+                var i = _particles[k];
+                if (w[i] != 0.0)
+                {
+                    Put(v, i, velocity + Vector3d.Cross(spin, _goals[k] - c));
+                }
+            }
+
+            _orientation[body] = q;
+        }
     }
 
     private void SolveRigidVelocities(int body, in ConstraintContext context)

@@ -27,8 +27,9 @@ namespace ParticlePhysics.Bodies;
 /// body does, but with plain PBD's prediction.
 /// </para>
 /// <para>
-/// Under a force-based integrator the end of the step is projected the same way, the step taken as one substep (a soft
-/// body's correction dx also changes its velocity by dx / dt). Two particles of one body do not collide: give the
+/// Under a force-based integrator the end of the step is projected the same way, the step taken as one substep: a rigid
+/// body turns by the angular momentum of the end velocities (about the start's offsets, which the straight-line step
+/// has not stretched) and takes the rigid velocity field; a soft body's correction dx also changes its velocity by dx / dt. Two particles of one body do not collide: give the
 /// contact set <see cref="PairFilter"/>. The set keeps each body's orientation, so the world brackets it
 /// (<see cref="IStatefulConstraintSet"/>): a failed step leaves the orientations as they were. Nothing is allocated per
 /// step. A pinned particle of a body stays where its pin holds it.
@@ -182,15 +183,17 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
     public void DiscardStep() => Array.Copy(_saved, _orientation, _bodies);
 
     /// <inheritdoc />
-    /// <remarks>The step as one substep: the projection, then (rigid bodies) the rigid velocity field, (soft) v += dx / dt.</remarks>
+    /// <remarks>
+    /// The step as one substep: rigid bodies turn by the angular momentum of the end velocities and take the rigid
+    /// velocity field; soft bodies move towards their goals and v += dx / dt.
+    /// </remarks>
     public void Resolve(in ConstraintContext context)
     {
         for (var b = 0; b < _bodies; b++)
         {
             if (_rigid[b])
             {
-                ProjectRigid(b, context);
-                SolveRigidVelocities(b, context);
+                ProjectRigid(b, context, fromVelocities: true);
             }
             else
             {
