@@ -125,7 +125,7 @@ public sealed partial class ContactSet
                 var gap = obstacle.Distance(q.X, q.Y, q.Z, out var nx, out var ny, out var nz) - radius;
                 var u = -Vector3d.Dot(Read(v, i) - obstacle.Velocity, new Vector3d(nx, ny, nz));
                 if (gap <= ContactSearch.ToleranceAt(Math.Abs(q.X) + Math.Abs(q.Y) + Math.Abs(q.Z)) + (RestingMargin * radius)
-                    && u >= 0.0 && !(obstacle.Restitution * u > _restingSpeed))
+                    && u >= 0.0 && !(RestitutionWith(obstacle, i) * u > _restingSpeed))
                 {
                     _ = ResolveObstacleImpact(in context, i, k, 0.0);
                 }
@@ -145,7 +145,7 @@ public sealed partial class ContactSet
             var gap = PairNormal.Of(d.X, d.Y, d.Z, a, b, out var nx, out var ny, out var nz) - reach;
             var u = -Vector3d.Dot(va - vb, new Vector3d(nx, ny, nz));
             if (gap <= ContactSearch.ToleranceAt(Math.Abs(pa.X) + Math.Abs(pa.Y) + Math.Abs(pa.Z)) + (RestingMargin * reach)
-                && u >= 0.0 && !(_particleRestitution * u > _restingSpeed))
+                && u >= 0.0 && !(PairRestitution(a, b) * u > _restingSpeed))
             {
                 _ = ResolvePairImpact(in context, p, 0.0);
             }
@@ -235,8 +235,9 @@ public sealed partial class ContactSet
         var normal = new Vector3d(nx, ny, nz);
         var relative = v - obstacle.Velocity;
         var u = -Vector3d.Dot(relative, normal);
-        var resting = !(obstacle.Restitution * u > _restingSpeed);
-        var e = resting ? 0.0 : obstacle.Restitution;
+        var restitution = RestitutionWith(obstacle, i);
+        var resting = !(restitution * u > _restingSpeed);
+        var e = resting ? 0.0 : restitution;
         var dv = Vector3d.Zero;
         var tangent = relative + (u * normal);
         if (u > 0.0)
@@ -245,7 +246,7 @@ public sealed partial class ContactSet
             var speed = tangent.Length;
             if (speed > 0.0)
             {
-                var cut = Math.Min(speed, obstacle.Friction * (1.0 + e) * u);
+                var cut = Math.Min(speed, FrictionWith(obstacle, i) * (1.0 + e) * u);
                 dv -= (cut / speed) * tangent;
                 tangent = (1.0 - (cut / speed)) * tangent;
             }
@@ -283,8 +284,9 @@ public sealed partial class ContactSet
         var normal = new Vector3d(nx, ny, nz);
         var relative = va - vb;
         var u = -Vector3d.Dot(relative, normal);
-        var resting = !(_particleRestitution * u > _restingSpeed);
-        var e = resting ? 0.0 : _particleRestitution;
+        var restitution = PairRestitution(a, b);
+        var resting = !(restitution * u > _restingSpeed);
+        var e = resting ? 0.0 : restitution;
         if (u > 0.0)
         {
             var j = (1.0 + e) * u / (wa + wb);
@@ -293,7 +295,7 @@ public sealed partial class ContactSet
             var speed = tangent.Length;
             if (speed > 0.0)
             {
-                var jt = Math.Min(speed / (wa + wb), _particleFriction * j);
+                var jt = Math.Min(speed / (wa + wb), PairFriction(a, b) * j);
                 impulse -= (jt / speed) * tangent;
             }
 

@@ -59,7 +59,7 @@ public sealed partial class ContactSet
             }
 
             var tau = context.Dt - _resting.Time(i);
-            var f = obstacle.Friction * Math.Max(-un, 0.0);
+            var f = FrictionWith(obstacle, i) * Math.Max(-un, 0.0);
             if (f > 0.0 && tau > 0.0)
             {
                 // The tangential velocity at the start of the rest and at the end, and the displacement since the

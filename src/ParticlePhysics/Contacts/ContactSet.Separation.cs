@@ -186,9 +186,10 @@ public sealed partial class ContactSet
             double ix = j * nx, iy = j * ny, iz = j * nz;
             double tx = rx - (un * nx), ty = ry - (un * ny), tz = rz - (un * nz);
             var speed = Math.Sqrt((tx * tx) + (ty * ty) + (tz * tz));
-            if (speed > 0.0 && _particleFriction > 0.0)
+            var mu = PairFriction(a, b);
+            if (speed > 0.0 && mu > 0.0)
             {
-                var scale = Math.Min(speed / w, _particleFriction * j) / speed;
+                var scale = Math.Min(speed / w, mu * j) / speed;
                 ix -= scale * tx;
                 iy -= scale * ty;
                 iz -= scale * tz;
@@ -230,9 +231,10 @@ public sealed partial class ContactSet
             double dx = -un * nx, dy = -un * ny, dz = -un * nz;
             double tx = rx - (un * nx), ty = ry - (un * ny), tz = rz - (un * nz);
             var speed = Math.Sqrt((tx * tx) + (ty * ty) + (tz * tz));
-            if (speed > 0.0 && obstacle.Friction > 0.0)
+            var mu = FrictionWith(obstacle, i);
+            if (speed > 0.0 && mu > 0.0)
             {
-                var scale = Math.Min(speed, obstacle.Friction * -un) / speed;
+                var scale = Math.Min(speed, mu * -un) / speed;
                 dx -= scale * tx;
                 dy -= scale * ty;
                 dz -= scale * tz;

@@ -159,7 +159,7 @@ public sealed partial class ContactSet
                 // Static friction: undo the tangential move relative to the obstacle when it is within mu |C|.
                 var move = position - Read(previous, i) - (h * obstacle.Velocity);
                 var tangential = move - (Vector3d.Dot(move, normal) * normal);
-                if (tangential.Length < obstacle.Friction * depth)
+                if (tangential.Length < FrictionWith(obstacle, i) * depth)
                 {
                     position -= tangential;
                 }
@@ -191,16 +191,16 @@ public sealed partial class ContactSet
             if (k >= 0)
             {
                 var obstacle = _obstacles[k];
-                e = obstacle.Restitution;
-                mu = obstacle.Friction;
+                e = RestitutionWith(obstacle, a);
+                mu = FrictionWith(obstacle, a);
                 wa = 1.0;
                 wb = 0.0;
                 relative = Read(v, a) - obstacle.Velocity;
             }
             else
             {
-                e = _particleRestitution;
-                mu = _particleFriction;
+                e = PairRestitution(a, _substep.Second(c));
+                mu = PairFriction(a, _substep.Second(c));
                 wa = inverseMasses[a];
                 wb = inverseMasses[_substep.Second(c)];
                 relative = Read(v, a) - Read(v, _substep.Second(c));
@@ -410,7 +410,7 @@ public sealed partial class ContactSet
     private void AddSubstepContact(int kind, int first, int second, Vector3d normal, double depth, double approach)
     {
         // The log of impacts: under substeps, those of the last substep (its end as their time), approaching or resting.
-        var e = kind >= 0 ? _obstacles[kind].Restitution : _particleRestitution;
+        var e = kind >= 0 ? RestitutionWith(_obstacles[kind], first) : PairRestitution(first, second);
         var u = Math.Max(-approach, 0.0);
         _log.Record(_substep.End, first, kind >= 0 ? kind : second, kind >= 0, u, !(e * u > _restingSpeed));
         _substep.Add(kind, first, second, normal, depth, approach);
