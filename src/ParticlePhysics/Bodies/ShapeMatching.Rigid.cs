@@ -14,10 +14,10 @@ public sealed partial class ShapeMatching
     private void ProjectRigid(int body, in ConstraintContext context, bool fromVelocities = false)
     {
         var (first, end) = (_start[body], _start[body + 1]);
-        var x0 = context.StartPositions;
+        var x0 = context.StartPositions.ForReading();
         var x = context.Positions;
-        var m = context.Masses;
-        var w = context.InverseMasses;
+        var m = context.Masses.ForReading();
+        var w = context.InverseMasses.ForReading();
         var (mass, c, restCentre) = Centres(first, end, x, m);
         var (_, c0, _) = Centres(first, end, x0, m);
 
@@ -75,11 +75,11 @@ public sealed partial class ShapeMatching
     private void SolveRigidVelocities(int body, in ConstraintContext context)
     {
         var (first, end) = (_start[body], _start[body + 1]);
-        var x0 = context.StartPositions;
+        var x0 = context.StartPositions.ForReading();
         var x = context.Positions;
         var v = context.Velocities;
-        var m = context.Masses;
-        var w = context.InverseMasses;
+        var m = context.Masses.ForReading();
+        var w = context.InverseMasses.ForReading();
         var (mass, c, restCentre) = Centres(first, end, x, m);
         var inverseH = 1.0 / context.Dt;
 
@@ -126,7 +126,7 @@ public sealed partial class ShapeMatching
     }
 
     /// <summary>The total mass, the centre of mass of <paramref name="x"/>, and the mass-weighted mean of the rest offsets.</summary>
-    private (double Mass, Vector3d Centre, Vector3d RestCentre) Centres(int first, int end, ReadOnlySpan<double> x, ReadOnlySpan<double> m)
+    private (double Mass, Vector3d Centre, Vector3d RestCentre) Centres(int first, int end, Span<double> x, Span<double> m)
     {
         var mass = 0.0;
         var centre = Vector3d.Zero;
@@ -146,7 +146,7 @@ public sealed partial class ShapeMatching
     /// omega = I^-1 L with I = R I_0 R^T, I_0 = sum m (|d|^2 1 - d d^T) of the rest offsets d about their centre of mass,
     /// solved in the body's frame by cofactors; 0 for a body with no inertia (one particle).
     /// </summary>
-    private Vector3d AngularVelocity(int first, int end, ReadOnlySpan<double> m, Vector3d restCentre, Quaternion4d rotation, Vector3d momentum)
+    private Vector3d AngularVelocity(int first, int end, Span<double> m, Vector3d restCentre, Quaternion4d rotation, Vector3d momentum)
     {
         var (xx, xy, xz, yy, yz, zz) = RestInertia(first, end, m, restCentre);
         var b = rotation.RotateInverse(momentum);
@@ -169,7 +169,7 @@ public sealed partial class ShapeMatching
         return rotation.Rotate(y);
     }
 
-    private (double Xx, double Xy, double Xz, double Yy, double Yz, double Zz) RestInertia(int first, int end, ReadOnlySpan<double> m, Vector3d restCentre)
+    private (double Xx, double Xy, double Xz, double Yy, double Yz, double Zz) RestInertia(int first, int end, Span<double> m, Vector3d restCentre)
     {
         double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
         for (var k = first; k < end; k++)
@@ -189,7 +189,7 @@ public sealed partial class ShapeMatching
     }
 
     /// <summary>Whether the rest shape has an invertible inertia: its particles do not all lie on one line.</summary>
-    private static bool InertiaIsRegular(Vector3d[] rest, ReadOnlySpan<int> particles, ReadOnlySpan<double> m)
+    private static bool InertiaIsRegular(Vector3d[] rest, Span<int> particles, Span<double> m)
     {
         // The offsets are about the centre of mass already; the smallest principal moment vanishes only on a line.
         double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0, size = 0;

@@ -1,3 +1,5 @@
+using ParticlePhysics.Numerics;
+
 namespace ParticlePhysics.Bodies;
 
 // Soft bodies: Müller et al.'s projection towards the goals by the fraction s.
@@ -8,8 +10,8 @@ public sealed partial class ShapeMatching
         var (first, end) = (_start[body], _start[body + 1]);
         var x = context.Positions;
         var v = context.Velocities;
-        var m = context.Masses;
-        var w = context.InverseMasses;
+        var m = context.Masses.ForReading();
+        var w = context.InverseMasses.ForReading();
         var (_, c, restCentre) = Centres(first, end, x, m);
         double a00 = 0, a01 = 0, a02 = 0, a10 = 0, a11 = 0, a12 = 0, a20 = 0, a21 = 0, a22 = 0;
         for (var k = first; k < end; k++)

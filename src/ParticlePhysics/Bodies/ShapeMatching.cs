@@ -127,9 +127,9 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
     public BodyPose GetPose(int body)
     {
         CheckBody(body);
-        var x = _world.Positions;
-        var v = _world.Velocities;
-        var m = _world.Masses;
+        var x = _world.Positions.ForReading();
+        var v = _world.Velocities.ForReading();
+        var m = _world.Masses.ForReading();
         var (first, end) = (_start[body], _start[body + 1]);
         var (mass, c, restCentre) = Centres(first, end, x, m);
         var velocity = Vector3d.Zero;
@@ -159,8 +159,8 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
         CheckBody(body);
         Guard.Finite(linearVelocity, nameof(linearVelocity));
         Guard.Finite(angularVelocity, nameof(angularVelocity));
-        var x = _world.Positions;
-        var (_, c, _) = Centres(_start[body], _start[body + 1], x, _world.Masses);
+        var x = _world.Positions.ForReading();
+        var (_, c, _) = Centres(_start[body], _start[body + 1], x, _world.Masses.ForReading());
         for (var k = _start[body]; k < _start[body + 1]; k++)
         {
             var i = _particles[k];
@@ -231,8 +231,9 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
         }
     }
 
-    private int Add(ReadOnlySpan<int> particles, double stiffness, bool rigid, Rotation3d rotation)
+    private int Add(ReadOnlySpan<int> given, double stiffness, bool rigid, Rotation3d rotation)
     {
+        var particles = given.ForReading();
         _world.ThrowIfStepping();
         if (particles.Length == 0)
         {
@@ -267,8 +268,8 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
         }
 
         // The rest offsets in the body's frame, from the centre of mass now.
-        var x = _world.Positions;
-        var m = _world.Masses;
+        var x = _world.Positions.ForReading();
+        var m = _world.Masses.ForReading();
         var mass = 0.0;
         var centre = Vector3d.Zero;
         foreach (var i in particles)
@@ -344,7 +345,7 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
         }
     }
 
-    private static Vector3d At(ReadOnlySpan<double> values, int i) => new(values[3 * i], values[(3 * i) + 1], values[(3 * i) + 2]);
+    private static Vector3d At(Span<double> values, int i) => new(values[3 * i], values[(3 * i) + 1], values[(3 * i) + 2]);
 
     private static void Put(Span<double> values, int i, Vector3d value)
     {
