@@ -12,8 +12,11 @@ using System.Diagnostics;
 using System.Globalization;
 using System.IO;
 using System.Runtime.InteropServices;
+using ParticlePhysics.Bodies;
 using ParticlePhysics.Cloth;
 using ParticlePhysics.Constraints;
+using ParticlePhysics.Contacts;
+using ParticlePhysics.Forces;
 using ParticlePhysics.Driver;
 using ParticlePhysics.Integrators;
 using ParticlePhysics.Parallel;
@@ -54,6 +57,7 @@ namespace ParticlePhysics.RuntimeComparison
                 UnitySample();
                 Constraints();
                 Scenes();
+                Bodies();
             }
 
             if (timings)
@@ -64,6 +68,78 @@ namespace ParticlePhysics.RuntimeComparison
             }
 
             return 0;
+        }
+
+        // Rigid and soft bodies (issue "solids from particles"): a box spun about its intermediate axis (its own
+        // trigonometry and rotation extraction), and rigid and soft boxes heaped on the ground through the contact set.
+        private static void Bodies()
+        {
+            var world = new ParticleWorld();
+            var bodies = new ShapeMatching(world);
+            AddBox(world, bodies, new Vector3d(0, 0, 0), new Vector3d(0.8, 0.4, 0.2), Rotation3d.Identity, 0.0);
+            world.AddConstraints(bodies);
+            bodies.SetMotion(0, Vector3d.Zero, new Vector3d(0.01, 3, 0.01));
+            var xpbd = new Xpbd(10);
+            for (var step = 0; step < 240; step++)
+            {
+                world.Step(xpbd, 1.0 / 120);
+            }
+
+            var hash = new BitHash();
+            hash.Add(world.Positions.ToArray());
+            hash.Add(world.Velocities.ToArray());
+            var pose = bodies.GetPose(0);
+            hash.Add(pose.Rotation.W);
+            hash.Add(pose.Rotation.X);
+            hash.Add(pose.AngularVelocity.Y);
+            Print("bodies/spin", hash);
+
+            var heap = new ParticleWorld();
+            var heaped = new ShapeMatching(heap);
+            for (var b = 0; b < 6; b++)
+            {
+                AddBox(heap, heaped, new Vector3d(0.05 * b, 0.2 + (0.35 * b), 0.03 * b), new Vector3d(0.3, 0.2, 0.2), new Rotation3d(0.1 * b, 0.2, -0.1 * b, 1), b % 2 == 0 ? 0.0 : 0.3);
+            }
+
+            heap.AddForce(Gravity.Down(9.81));
+            var contacts = new ContactSet();
+            contacts.ParticleCollisions = true;
+            contacts.ParticleFriction = 0.4;
+            contacts.PairFilter = heaped.PairFilter;
+            contacts.Add(PlaneObstacle.Ground(0, 0.5));
+            contacts.SetParticleMaterial(0, 8, 0.8, 0.2);
+            heap.AddConstraints(heaped);
+            heap.AddConstraints(contacts);
+            var heapStep = new Xpbd(10);
+            for (var step = 0; step < 90; step++)
+            {
+                heap.Step(heapStep, 1.0 / 60);
+            }
+
+            hash = new BitHash();
+            hash.Add(heap.Positions.ToArray());
+            hash.Add(heap.Velocities.ToArray());
+            Print("bodies/heap", hash);
+        }
+
+        private static void AddBox(ParticleWorld world, ShapeMatching bodies, Vector3d centre, Vector3d size, Rotation3d rotation, double softness)
+        {
+            var points = BodyLattice.Box(centre, size, rotation, 0.1);
+            var particles = new int[points.Length];
+            for (var k = 0; k < points.Length; k++)
+            {
+                particles[k] = world.AddParticle(points[k], 1.0 / points.Length);
+                world.SetRadius(particles[k], 0.05);
+            }
+
+            if (softness > 0.0)
+            {
+                bodies.AddSoft(particles, 1.0 - softness, rotation);
+            }
+            else
+            {
+                bodies.AddRigid(particles, rotation);
+            }
         }
 
         // Every integrator of the catalog on the course's 16 x 16 cloth, 200 steps of 1 ms (stable for all of them):
