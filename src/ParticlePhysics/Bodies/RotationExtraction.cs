@@ -9,9 +9,9 @@ namespace ParticlePhysics.Bodies;
 /// and a_i of A, until the turn is below 1e-15 rad or 24 iterations have run. Where it can, the step is Newton's
 /// instead: linearising sum_i (r_i + omega x r_i) x a_i = 0 gives (tr(B) 1 - B) omega = sum_i r_i x a_i with
 /// B = sum_i r_i a_i^T, whose matrix is R (tr(S) 1 - S) R^T near the answer, positive definite, so the iteration
-/// converges quadratically rather than at Müller's linear rate (which takes hundreds of iterations for the stretched
-/// rest shape of an 8 x 4 x 2 box); Müller's step, tr(B) 1 in place of the matrix, is kept where its determinant is
-/// not positive (far from the answer, or an inverted cluster).
+/// converges quadratically rather than at Müller's linear rate, whose ratio grows with the spread of S's eigenvalues (a
+/// body much longer than it is thick converges slowly); Müller's step, tr(B) 1 in place of the matrix, is kept where its
+/// determinant is not positive (far from the answer, or an inverted cluster).
 /// </summary>
 /// <remarks>
 /// The fixed point has sum_i r_i x a_i = 0, that is R^T A symmetric: R is the polar factor when R^T A is positive

@@ -38,9 +38,10 @@ public sealed partial class ShapeMatching
         // Turn by exp(omega h), omega = I^-1 L taken at the half-way orientation: the midpoint rule, second order.
         var h = context.Dt;
         var q0 = _orientation[body];
-        var omega = AngularVelocity(first, end, m, restCentre, q0, momentum);
+        var inertia = InertiaOf(body, m, restCentre);
+        var omega = inertia.AngularVelocity(q0, momentum);
         var half = (Quaternion4d.FromRotationVector((0.5 * h) * omega) * q0).Normalized();
-        omega = AngularVelocity(first, end, m, restCentre, half, momentum);
+        omega = inertia.AngularVelocity(half, momentum);
         var q = (Quaternion4d.FromRotationVector(h * omega) * q0).Normalized();
         for (var k = first; k < end; k++)
         {
@@ -58,7 +59,7 @@ public sealed partial class ShapeMatching
         if (fromVelocities)
         {
             velocity /= mass;
-            var spin = AngularVelocity(first, end, m, restCentre, q, momentum);
+            var spin = inertia.AngularVelocity(q, momentum);
             for (var k = first; k < end; k++)
             {
                 var i = _particles[k];
@@ -88,7 +89,7 @@ public sealed partial class ShapeMatching
         // by the (omega h)^2 that the velocity field corrects.
         var velocity = Vector3d.Zero;
         var extra = Vector3d.Zero;
-        double a00 = 0, a01 = 0, a02 = 0, a10 = 0, a11 = 0, a12 = 0, a20 = 0, a21 = 0, a22 = 0;
+        var covariance = default(CovarianceSum);
         for (var k = first; k < end; k++)
         {
             var i = _particles[k];
@@ -97,22 +98,12 @@ public sealed partial class ShapeMatching
             var vi = At(v, i);
             velocity += mi * vi;
             extra += mi * Vector3d.Cross(r, vi - ((_goals[k] - At(x0, i)) * inverseH));
-            var p = mi * r;
-            var d = _rest[k] - restCentre;
-            a00 += p.X * d.X;
-            a01 += p.X * d.Y;
-            a02 += p.X * d.Z;
-            a10 += p.Y * d.X;
-            a11 += p.Y * d.Y;
-            a12 += p.Y * d.Z;
-            a20 += p.Z * d.X;
-            a21 += p.Z * d.Y;
-            a22 += p.Z * d.Z;
+            covariance.Add(mi * r, _rest[k] - restCentre);
         }
 
         velocity /= mass;
-        var q = RotationExtraction.Extract(a00, a01, a02, a10, a11, a12, a20, a21, a22, _predicted[body]);
-        var omega = AngularVelocity(first, end, m, restCentre, q, _momentum[body] + extra);
+        var q = covariance.Rotation(_predicted[body]);
+        var omega = InertiaOf(body, m, restCentre).AngularVelocity(q, _momentum[body] + extra);
         for (var k = first; k < end; k++)
         {
             var i = _particles[k];
@@ -142,71 +133,20 @@ public sealed partial class ShapeMatching
         return (mass, centre / mass, rest / mass);
     }
 
-    /// <summary>
-    /// omega = I^-1 L with I = R I_0 R^T, I_0 = sum m (|d|^2 1 - d d^T) of the rest offsets d about their centre of mass,
-    /// solved in the body's frame by cofactors; 0 for a body with no inertia (one particle).
-    /// </summary>
-    private Vector3d AngularVelocity(int first, int end, Span<double> m, Vector3d restCentre, Quaternion4d rotation, Vector3d momentum)
+    /// <summary>The inertia of body <paramref name="body"/>'s rest offsets about <paramref name="restCentre"/>, with the masses as they are now.</summary>
+    private RestInertia InertiaOf(int body, Span<double> m, Vector3d restCentre)
     {
-        var (xx, xy, xz, yy, yz, zz) = RestInertia(first, end, m, restCentre);
-        var b = rotation.RotateInverse(momentum);
-        var c00 = (yy * zz) - (yz * yz);
-        var c01 = (xz * yz) - (xy * zz);
-        var c02 = (xy * yz) - (xz * yy);
-        var det = (xx * c00) + (xy * c01) + (xz * c02);
-        if (!(det > 0.0))
-        {
-            return Vector3d.Zero;
-        }
-
-        var c11 = (xx * zz) - (xz * xz);
-        var c12 = (xy * xz) - (xx * yz);
-        var c22 = (xx * yy) - (xy * xy);
-        var y = new Vector3d(
-            ((c00 * b.X) + (c01 * b.Y) + (c02 * b.Z)) / det,
-            ((c01 * b.X) + (c11 * b.Y) + (c12 * b.Z)) / det,
-            ((c02 * b.X) + (c12 * b.Y) + (c22 * b.Z)) / det);
-        return rotation.Rotate(y);
-    }
-
-    private (double Xx, double Xy, double Xz, double Yy, double Yz, double Zz) RestInertia(int first, int end, Span<double> m, Vector3d restCentre)
-    {
-        double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
-        for (var k = first; k < end; k++)
-        {
-            var mi = m[_particles[k]];
-            var d = _rest[k] - restCentre;
-            double dx2 = d.X * d.X, dy2 = d.Y * d.Y, dz2 = d.Z * d.Z;
-            xx += mi * (dy2 + dz2);
-            yy += mi * (dx2 + dz2);
-            zz += mi * (dx2 + dy2);
-            xy -= mi * d.X * d.Y;
-            xz -= mi * d.X * d.Z;
-            yz -= mi * d.Y * d.Z;
-        }
-
-        return (xx, xy, xz, yy, yz, zz);
+        var (first, count) = (_start[body], _start[body + 1] - _start[body]);
+        return RestInertia.Of(_particles.AsSpan(first, count), _rest.AsSpan(first, count), m, restCentre);
     }
 
     /// <summary>Whether the rest shape has an invertible inertia: its particles do not all lie on one line.</summary>
     private static bool InertiaIsRegular(Vector3d[] rest, Span<int> particles, Span<double> m)
     {
         // The offsets are about the centre of mass already; the smallest principal moment vanishes only on a line.
-        double xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0, size = 0;
-        for (var k = 0; k < rest.Length; k++)
-        {
-            var mi = m[particles[k]];
-            var d = rest[k];
-            xx += mi * ((d.Y * d.Y) + (d.Z * d.Z));
-            yy += mi * ((d.X * d.X) + (d.Z * d.Z));
-            zz += mi * ((d.X * d.X) + (d.Y * d.Y));
-            xy -= mi * d.X * d.Y;
-            xz -= mi * d.X * d.Z;
-            yz -= mi * d.Y * d.Z;
-            size += mi * d.LengthSquared;
-        }
-
-        var det = (xx * ((yy * zz) - (yz * yz))) - (xy * ((xy * zz) - (yz * xz))) + (xz * ((xy * yz) - (yy * xz)));
+        var inertia = RestInertia.Of(particles, rest, m, Vector3d.Zero);
+        var det = inertia.Determinant;
+        var size = inertia.SecondMoment;
         return DoubleChecks.IsFinite(det) && det > 1e-9 * size * size * size;
     }
 }

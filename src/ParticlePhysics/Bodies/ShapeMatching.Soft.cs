@@ -13,24 +13,14 @@ public sealed partial class ShapeMatching
         var m = context.Masses.ForReading();
         var w = context.InverseMasses.ForReading();
         var (_, c, restCentre) = Centres(first, end, x, m);
-        double a00 = 0, a01 = 0, a02 = 0, a10 = 0, a11 = 0, a12 = 0, a20 = 0, a21 = 0, a22 = 0;
+        var covariance = default(CovarianceSum);
         for (var k = first; k < end; k++)
         {
             var i = _particles[k];
-            var p = m[i] * (At(x, i) - c);
-            var d = _rest[k] - restCentre;
-            a00 += p.X * d.X;
-            a01 += p.X * d.Y;
-            a02 += p.X * d.Z;
-            a10 += p.Y * d.X;
-            a11 += p.Y * d.Y;
-            a12 += p.Y * d.Z;
-            a20 += p.Z * d.X;
-            a21 += p.Z * d.Y;
-            a22 += p.Z * d.Z;
+            covariance.Add(m[i] * (At(x, i) - c), _rest[k] - restCentre);
         }
 
-        var q = RotationExtraction.Extract(a00, a01, a02, a10, a11, a12, a20, a21, a22, _orientation[body]);
+        var q = covariance.Rotation(_orientation[body]);
         _orientation[body] = q;
         var s = _stiffness[body];
         var inverseDt = 1.0 / context.Dt;

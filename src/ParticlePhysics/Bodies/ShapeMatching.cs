@@ -144,7 +144,7 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
 
         velocity /= mass;
         var q = _orientation[body];
-        var omega = AngularVelocity(first, end, m, restCentre, q, momentum);
+        var omega = InertiaOf(body, m, restCentre).AngularVelocity(q, momentum);
         return new BodyPose(c - q.Rotate(restCentre), q.ToRotation(), velocity, omega);
     }
 
