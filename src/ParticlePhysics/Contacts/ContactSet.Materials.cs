@@ -22,16 +22,7 @@ public sealed partial class ContactSet
     /// </exception>
     public void SetParticleMaterial(int first, int count, double friction, double restitution)
     {
-        if (first < 0 || first > ParticleWorld.MaxParticles)
-        {
-            throw new ArgumentOutOfRangeException(nameof(first), first, $"first must be a particle index from 0 to {ParticleWorld.MaxParticles}; got {first}.");
-        }
-
-        if (count < 0 || count > ParticleWorld.MaxParticles - first)
-        {
-            throw new ArgumentOutOfRangeException(nameof(count), count, $"count must be from 0 to {ParticleWorld.MaxParticles - first} (first + count at most {ParticleWorld.MaxParticles}); got {count}.");
-        }
-
+        CheckParticleRange(first, count);
         Guard.NonNegativeFinite(friction, nameof(friction));
         CheckRestitution(restitution, nameof(restitution));
         if (_ownFriction.Length < first + count)

@@ -260,15 +260,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     /// <exception cref="ArgumentOutOfRangeException"><paramref name="first"/> or <paramref name="count"/> is negative, or their sum passes <see cref="ParticleWorld.MaxParticles"/>.</exception>
     public void SetParticleFilter(int first, int count, CollisionFilter filter)
     {
-        if (first < 0 || first > ParticleWorld.MaxParticles)
-        {
-            throw new ArgumentOutOfRangeException(nameof(first), first, $"first must be a particle index from 0 to {ParticleWorld.MaxParticles}; got {first}.");
-        }
-
-        if (count < 0 || count > ParticleWorld.MaxParticles - first)
-        {
-            throw new ArgumentOutOfRangeException(nameof(count), count, $"count must be from 0 to {ParticleWorld.MaxParticles - first} (first + count at most {ParticleWorld.MaxParticles}); got {count}.");
-        }
+        CheckParticleRange(first, count);
 
         if (_particleFilters.Length < first + count)
         {
@@ -278,6 +270,20 @@ public sealed partial class ContactSet : IStatefulConstraintSet
 
         _particleFilters.AsSpan(first, count).Fill(filter);
         _anyParticleFilter |= filter != CollisionFilter.Default;
+    }
+
+    /// <summary>Refuses a range of particles that starts below 0 or ends past <see cref="ParticleWorld.MaxParticles"/>.</summary>
+    private static void CheckParticleRange(int first, int count)
+    {
+        if (first < 0 || first > ParticleWorld.MaxParticles)
+        {
+            throw new ArgumentOutOfRangeException(nameof(first), first, $"first must be a particle index from 0 to {ParticleWorld.MaxParticles}; got {first}.");
+        }
+
+        if (count < 0 || count > ParticleWorld.MaxParticles - first)
+        {
+            throw new ArgumentOutOfRangeException(nameof(count), count, $"count must be from 0 to {ParticleWorld.MaxParticles - first} (first + count at most {ParticleWorld.MaxParticles}); got {count}.");
+        }
     }
 
     /// <summary>The filter of particle <paramref name="particle"/> (<see cref="SetParticleFilter"/>; the default if never set).</summary>
