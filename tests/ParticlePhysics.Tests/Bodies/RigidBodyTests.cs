@@ -21,23 +21,14 @@ public class RigidBodyTests
         _output = output;
     }
 
-    private const double Spacing = 0.1;
     private static readonly Vector3d _boxSize = new(0.8, 0.4, 0.2); // 8 x 4 x 2 particles
 
-    /// <summary>A world with one rigid box of 8 x 4 x 2 particles of 1 kg in total, its frame the world's.</summary>
+    /// <summary>A world with one rigid box of <paramref name="size"/> at spacing 0.1 m, its frame the world's.</summary>
     internal static (ParticleWorld World, ShapeMatching Bodies) Box(Vector3d size, double totalMass = 1.0, Vector3d? center = null)
     {
         var world = new ParticleWorld();
-        var points = BodyLattice.Box(center ?? Vector3d.Zero, size, Rotation3d.Identity, Spacing);
-        var particles = new int[points.Length];
-        for (var k = 0; k < points.Length; k++)
-        {
-            particles[k] = world.AddParticle(points[k], totalMass / points.Length);
-            world.SetRadius(particles[k], Spacing / 2);
-        }
-
         var bodies = new ShapeMatching(world);
-        bodies.AddRigid(particles);
+        RigidContactTests.AddBox(world, bodies, center ?? Vector3d.Zero, size, Rotation3d.Identity, totalMass);
         world.AddConstraints(bodies);
         return (world, bodies);
     }
