@@ -3,7 +3,7 @@ using System;
 namespace ParticlePhysics.Numerics;
 
 /// <summary>
-/// Sine and cosine from + - * / alone, so that a step that needs them (a gust of wind) gives the same bits on every
+/// Sine, cosine and atan2 from + - * / and sqrt alone, so that a step that needs them (a gust of wind) gives the same bits on every
 /// runtime: Math.Sin calls the platform's libm, whose last bit differs between glibc, the CRT, Mono and IL2CPP
 /// builds. Box2D and Jitter2 write their own for the same reason.
 /// </summary>
@@ -51,6 +51,53 @@ internal static class DeterministicTrig
     {
         var quadrant = Reduce(x, out var r);
         return Select(quadrant + 1, SinKernel(r), CosKernel(r));
+    }
+
+    /// <summary>
+    /// The angle of (x, y) in (-pi, pi], as <see cref="Math.Atan2"/> gives it (signed zeros included), NaN when either is
+    /// not finite. Within 1e-15 of Math.Atan2 (tested).
+    /// </summary>
+    /// <remarks>
+    /// The octant brings the ratio t = min / max of |x| and |y| into [0, 1]; two halvings atan t = 2 atan(t / (1 +
+    /// sqrt(1 + t^2))) bring it below tan(pi/16) = 0.199, where the alternating series u - u^3/3 + ... to u^25 leaves
+    /// under 1e-19; then the octant's reflections pi/2 - a and pi - a, and the sign of y.
+    /// </remarks>
+    public static double Atan2(double y, double x)
+    {
+        if (!(Math.Abs(x) <= double.MaxValue && Math.Abs(y) <= double.MaxValue))
+        {
+            return double.NaN;
+        }
+
+        double ax = Math.Abs(x), ay = Math.Abs(y);
+        var steep = ay > ax;
+        var a = ax == 0.0 && ay == 0.0 ? 0.0 : AtanOfFraction(steep ? ax / ay : ay / ax);
+        if (steep)
+        {
+            a = (0.5 * Math.PI) - a;
+        }
+
+        if (x < 0.0 || (x == 0.0 && BitConverter.DoubleToInt64Bits(x) < 0))
+        {
+            a = Math.PI - a;
+        }
+
+        return y < 0.0 || (y == 0.0 && BitConverter.DoubleToInt64Bits(y) < 0) ? -a : a;
+    }
+
+    // atan t for 0 <= t <= 1.
+    private static double AtanOfFraction(double t)
+    {
+        var u = t / (1.0 + Math.Sqrt(1.0 + (t * t)));
+        u /= 1.0 + Math.Sqrt(1.0 + (u * u));
+        var z = u * u;
+        var series = 0.0;
+        for (var k = 25; k >= 3; k -= 2)
+        {
+            series = ((k & 2) == 0 ? 1.0 / k : -1.0 / k) + (z * series);
+        }
+
+        return 4.0 * (u + (u * z * series));
     }
 
     /// <summary>

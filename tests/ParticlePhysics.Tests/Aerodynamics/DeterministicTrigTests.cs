@@ -3,7 +3,7 @@ using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Tests.Aerodynamics;
 
-/// <summary>The library's own sine and cosine (+ - * / only) against the platform's, and their symmetries to the bit.</summary>
+/// <summary>The library's own sine, cosine and atan2 (+ - * / and sqrt only) against the platform's, and their symmetries to the bit.</summary>
 public class DeterministicTrigTests
 {
     [Theory]
@@ -38,6 +38,31 @@ public class DeterministicTrigTests
             Assert.Equal(-DeterministicTrig.Sin(x), DeterministicTrig.Sin(-x));
             Assert.Equal(DeterministicTrig.Cos(x), DeterministicTrig.Cos(-x));
         }
+    }
+
+    [Fact]
+    public void Atan2_agrees_with_the_platforms_in_every_quadrant_within_rounding()
+    {
+        var random = new Random(29);
+        var worst = 0.0;
+        for (var k = 0; k < 200_000; k++)
+        {
+            var scale = Math.Pow(10, (random.NextDouble() * 12) - 6);
+            var y = scale * ((2 * random.NextDouble()) - 1);
+            var x = (k % 7 == 0 ? 1e-3 : 1.0) * scale * ((2 * random.NextDouble()) - 1);
+            worst = Math.Max(worst, Math.Abs(DeterministicTrig.Atan2(y, x) - Math.Atan2(y, x)));
+        }
+
+        Assert.True(worst <= 1e-15, $"worst difference {worst:R}");
+        foreach (var (y, x) in new[] { (0.0, 0.0), (-0.0, 0.0), (0.0, -0.0), (-0.0, -0.0), (1.0, 0.0), (-1.0, 0.0), (0.0, -1.0), (-0.0, -1.0), (1.0, 1.0), (-2.0, -2.0) })
+        {
+            Assert.Equal(Math.Atan2(y, x), DeterministicTrig.Atan2(y, x), 15);
+            Assert.Equal(Math.Sign(Math.Atan2(y, x)), Math.Sign(DeterministicTrig.Atan2(y, x)));
+            Assert.Equal(BitConverter.DoubleToInt64Bits(Math.Atan2(y, x)) < 0, BitConverter.DoubleToInt64Bits(DeterministicTrig.Atan2(y, x)) < 0);
+        }
+
+        Assert.True(double.IsNaN(DeterministicTrig.Atan2(double.NaN, 1.0)));
+        Assert.True(double.IsNaN(DeterministicTrig.Atan2(1.0, double.PositiveInfinity)));
     }
 
     [Theory]
