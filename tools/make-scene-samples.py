@@ -253,6 +253,47 @@ def ropes():
     }
 
 
+def bodies():
+    # Eleven boxes, rigid and soft, and a rigid boulder filled from boulder.obj, dropped from a fixed pattern of
+    # places and turns into a tank of four walls on the ground.
+    import math
+
+    def turn(axis, degrees):
+        n = math.sqrt(sum(a * a for a in axis))
+        h = math.radians(degrees) / 2
+        return [round(math.cos(h), 12)] + [round(math.sin(h) * a / n, 12) for a in axis]
+
+    sizes = [[0.3, 0.2, 0.2], [0.2, 0.2, 0.2], [0.4, 0.1, 0.2], [0.25, 0.25, 0.15], [0.3, 0.15, 0.3], [0.2, 0.3, 0.1]]
+    places = [[-0.3, 0.4, -0.25], [0.25, 0.55, 0.2], [0.0, 0.8, 0.0], [-0.2, 1.05, 0.25], [0.3, 1.3, -0.2],
+              [-0.25, 1.55, -0.1], [0.1, 1.8, 0.3], [0.25, 2.05, 0.05], [-0.1, 2.3, -0.3], [0.0, 2.55, 0.15],
+              [-0.3, 2.8, 0.1]]
+    objects = []
+    for k, centre in enumerate(places):
+        soft = k % 3 == 2
+        body = {"type": "soft" if soft else "rigid",
+                "box": {"center": centre, "size": sizes[k % len(sizes)], "rotation": turn([1, 2 + k % 3, k % 2], 17 * k)},
+                "spacing": 0.05, "density": 400 if soft else 600, "friction": 0.5, "restitution": 0.1}
+        if soft:
+            body["stiffness"] = 0.6
+        objects.append(body)
+    objects.append({"type": "rigid", "mesh": {"obj": "boulder.obj"}, "position": [0.05, 3.3, -0.05], "spacing": 0.075,
+                    "density": 800, "friction": 0.5, "angularVelocity": [0, 0, 2]})
+    wall = 0.05
+    return {
+        "integrator": {"name": "xpbd", "substeps": 10},
+        "dt": 1 / 60,
+        "duration": 8,
+        "objects": objects,
+        "colliders": [
+            {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "friction": 0.5},
+            {"type": "box", "center": [-0.6 - wall, 0.4, 0], "halfExtents": [wall, 0.4, 0.65], "friction": 0.3},
+            {"type": "box", "center": [0.6 + wall, 0.4, 0], "halfExtents": [wall, 0.4, 0.65], "friction": 0.3},
+            {"type": "box", "center": [0, 0.4, -0.6 - wall], "halfExtents": [0.6, 0.4, wall], "friction": 0.3},
+            {"type": "box", "center": [0, 0.4, 0.6 + wall], "halfExtents": [0.6, 0.4, wall], "friction": 0.3},
+        ],
+    }
+
+
 dump("samples/scenes/flag.json", [
     "A flag from an OBJ mesh cut along a UV seam: welded into one cloth of membrane (Y = 1000 N/m, nu = 0.3) and",
     "plate bending (D = 1e-4 N m), pinned along its pole and hanging from it. Written by tools/make-scene-samples.py.",
@@ -271,3 +312,6 @@ dump("samples/scenes/drape-and-slope.json", [
 dump("samples/scenes/cloth-fold.json", [
     "A cloth of 24 x 24 cells dropped off-centre over a sphere: it drapes and folds onto itself, and self-collision",
     "(thickness 1 cm) keeps it from passing through itself. Written by tools/make-scene-samples.py."], cloth_fold())
+dump("samples/scenes/bodies.json", [
+    "Eleven boxes, eight rigid and three soft (shape matching of stiffness 0.6), and a rigid boulder filled from",
+    "boulder.obj, dropped into a tank: they land on each other, tumble and settle. Written by tools/make-scene-samples.py."], bodies())

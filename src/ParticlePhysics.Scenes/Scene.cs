@@ -111,12 +111,19 @@ public sealed class Scene
             text.AppendLine($"cloth triangles: {Count("cloth triangles")}, bending elements: {Count("bending elements")}");
         }
 
+        if (counts.ContainsKey("rigid bodies") || counts.ContainsKey("soft bodies"))
+        {
+            text.AppendLine($"rigid bodies: {Count("rigid bodies")}, soft bodies: {Count("soft bodies")}");
+        }
+
         text.AppendLine(_colliders.Count == 0
             ? "colliders: none"
             : "colliders: " + string.Join(", ", _colliders.GroupBy(c => c.Kind).Select(g => Invariant($"{g.Count()} {g.Key}"))));
         text.AppendLine(s.ParticleCollisions
             ? Invariant($"particle collisions: on (restitution {s.ParticleRestitution:R}, friction {s.ParticleFriction:R})")
-            : "particle collisions: off");
+            : counts.ContainsKey("rigid bodies") || counts.ContainsKey("soft bodies")
+                ? "particle collisions: off (but solids collide with every particle with a radius)"
+                : "particle collisions: off");
         text.AppendLine(Invariant($"gravity: [{s.Gravity.X:R}, {s.Gravity.Y:R}, {s.Gravity.Z:R}] m/s^2, drag: {s.Drag:R} N s/m"));
         if (s.Air is { } air)
         {

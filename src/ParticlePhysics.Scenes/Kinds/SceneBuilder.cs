@@ -1,5 +1,7 @@
+using System;
 using System.Collections.Generic;
 using ParticlePhysics.Aerodynamics;
+using ParticlePhysics.Bodies;
 using ParticlePhysics.Constraints;
 using ParticlePhysics.Contacts;
 using ParticlePhysics.Forces;
@@ -14,7 +16,8 @@ namespace ParticlePhysics.Scenes.Kinds;
 /// fixed order, the order the course's scenarios use, so that a scene written like a scenario gives its bits:
 /// forces springs, zero-length springs, the cloths' membranes and the bending, loads, drag, the cloths' aerodynamics,
 /// gravity (the order a <see cref="Cloth.MeshClothBuilder"/> adds its own in); constraint sets
-/// the projections of the springs, membranes and bending (for xpbd), the rods, the contacts.
+/// the projections of the springs, membranes and bending (for xpbd), the rods, the cloths' self-collision, the rigid
+/// and soft bodies' shape matching, the contacts.
 /// </summary>
 internal sealed class SceneBuilder
 {
@@ -28,6 +31,8 @@ internal sealed class SceneBuilder
     private ExcludedPairs? _meshEdges;
     private TriangleAerodynamics? _aerodynamics;
     private readonly List<(int[] Triangles, double Thickness)> _selfCollisions = new();
+    private readonly List<(int First, int Count, double Friction, double Restitution)> _solids = new();
+    private ShapeMatching? _bodies;
 
     public SceneBuilder(ParticleWorld world, string file, SceneSettings settings)
     {
@@ -67,6 +72,15 @@ internal sealed class SceneBuilder
 
     /// <summary>The cloths' and ropes' bending, made on first use.</summary>
     public QuadraticBending Bending => _bending ??= new QuadraticBending(World);
+
+    /// <summary>The rigid and soft bodies, made on first use.</summary>
+    public ShapeMatching Bodies => _bodies ??= new ShapeMatching(World);
+
+    /// <summary>
+    /// Notes the particles of a solid (a body, a granular material): they collide with every particle of a radius even
+    /// without <c>particleCollisions</c>, with their own friction and restitution (NaN: none of their own).
+    /// </summary>
+    public void AddSolid(int first, int count, double friction, double restitution) => _solids.Add((first, count, friction, restitution));
 
     /// <summary>Notes a cloth's mesh edge: its two particles do not collide with each other.</summary>
     public void AddMeshEdge(int first, int second) => (_meshEdges ??= new ExcludedPairs()).Add(first, second);
@@ -154,15 +168,20 @@ internal sealed class SceneBuilder
             world.AddConstraints(new ClothSelfCollision(world, triangles, thickness));
         }
 
-        if (_obstacles.Count > 0 || settings.ParticleCollisions)
+        if (_bodies is not null)
+        {
+            world.AddConstraints(_bodies);
+        }
+
+        if (_obstacles.Count > 0 || settings.ParticleCollisions || _solids.Count > 0)
         {
             var contacts = new ContactSet();
-            if (settings.ParticleCollisions)
+            if (settings.ParticleCollisions || _solids.Count > 0)
             {
                 contacts.ParticleCollisions = true;
                 contacts.ParticleRestitution = settings.ParticleRestitution;
                 contacts.ParticleFriction = settings.ParticleFriction;
-                contacts.PairFilter = JoinedPairs();
+                contacts.PairFilter = PairFilter(settings.ParticleCollisions);
             }
 
             foreach (var obstacle in _obstacles)
@@ -170,10 +189,43 @@ internal sealed class SceneBuilder
                 contacts.Add(obstacle);
             }
 
+            foreach (var (first, count, friction, restitution) in _solids)
+            {
+                if (!double.IsNaN(friction) || !double.IsNaN(restitution))
+                {
+                    contacts.SetParticleMaterial(first, count, friction, restitution);
+                }
+            }
+
             world.AddConstraints(contacts);
         }
 
         return world;
+    }
+
+    // Which pairs of particles collide: not two of one body, not two joined by a spring, rod or mesh edge, and, without
+    // particleCollisions, only pairs where one is a solid's.
+    private IContactPairFilter? PairFilter(bool everyParticle)
+    {
+        IContactPairFilter? filter = JoinedPairs();
+        if (!everyParticle)
+        {
+            var solid = new bool[World.Count];
+            foreach (var (first, count, _, _) in _solids)
+            {
+                solid.AsSpan(first, count).Fill(true);
+            }
+
+            filter = new SolidPairs(solid, filter);
+        }
+
+        if (_bodies is not null)
+        {
+            _bodies.PairFilter.Next = filter;
+            filter = _bodies.PairFilter;
+        }
+
+        return filter;
     }
 
     // The contract: pairs joined by a spring, rod or mesh edge do not collide.

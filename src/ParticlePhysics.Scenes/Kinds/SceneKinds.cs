@@ -34,8 +34,8 @@ internal sealed class SceneKinds
         kinds.Add(new LoadKind());
         kinds.Add(new ClothKind());
         kinds.Add(new RopeKind());
-        kinds.Add(NotBuiltYet.Object("rigid", "solids from particles"));
-        kinds.Add(NotBuiltYet.Object("soft", "solids from particles"));
+        kinds.Add(SolidKind.Rigid);
+        kinds.Add(SolidKind.Soft);
         kinds.Add(NotBuiltYet.Object("granular", "solids from particles"));
         kinds.Add(NotBuiltYet.Object("fluid", "fluids"));
 

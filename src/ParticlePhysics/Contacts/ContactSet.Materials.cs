@@ -14,17 +14,27 @@ public sealed partial class ContactSet
     /// carry one uses the mean of the two, as Unity does by default: with an obstacle, the mean of the particle's and the
     /// obstacle's; between particles, the mean of theirs, a particle without its own counting as
     /// <see cref="ParticleFriction"/> and <see cref="ParticleRestitution"/>. Particles never set use the obstacle's
-    /// values, and the set's between particles, unchanged. Indices past the world's particles apply to particles added there later.
+    /// values, and the set's between particles, unchanged. <see cref="double.NaN"/> for either value gives the particles
+    /// none of their own for that one (a body with a friction of its own but not a restitution). Indices past the world's
+    /// particles apply to particles added there later.
     /// </summary>
     /// <exception cref="ArgumentOutOfRangeException">
-    /// <paramref name="first"/> or <paramref name="count"/> out of range, <paramref name="friction"/> not a finite number
-    /// &gt;= 0, or <paramref name="restitution"/> not in [0, 1].
+    /// <paramref name="first"/> or <paramref name="count"/> out of range, <paramref name="friction"/> neither NaN nor a
+    /// finite number &gt;= 0, or <paramref name="restitution"/> neither NaN nor in [0, 1].
     /// </exception>
     public void SetParticleMaterial(int first, int count, double friction, double restitution)
     {
         CheckParticleRange(first, count);
-        Guard.NonNegativeFinite(friction, nameof(friction));
-        CheckRestitution(restitution, nameof(restitution));
+        if (!double.IsNaN(friction))
+        {
+            Guard.NonNegativeFinite(friction, nameof(friction));
+        }
+
+        if (!double.IsNaN(restitution))
+        {
+            CheckRestitution(restitution, nameof(restitution));
+        }
+
         if (_ownFriction.Length < first + count)
         {
             var length = Math.Max(first + count, 2 * _ownFriction.Length);
@@ -39,7 +49,10 @@ public sealed partial class ContactSet
         _ownRestitution.AsSpan(first, count).Fill(restitution);
     }
 
-    /// <summary>Particle <paramref name="particle"/>'s own friction and restitution, or null when it has none (<see cref="SetParticleMaterial"/>).</summary>
+    /// <summary>
+    /// Particle <paramref name="particle"/>'s own friction and restitution (NaN for one it has none of), or null when it
+    /// has neither (<see cref="SetParticleMaterial"/>).
+    /// </summary>
     public (double Friction, double Restitution)? GetParticleMaterial(int particle)
     {
         if (particle < 0)
@@ -47,7 +60,9 @@ public sealed partial class ContactSet
             throw new ArgumentOutOfRangeException(nameof(particle), particle, $"particle must be an index >= 0; got {particle}.");
         }
 
-        return particle < _ownFriction.Length && !double.IsNaN(_ownFriction[particle]) ? (_ownFriction[particle], _ownRestitution[particle]) : null;
+        return particle < _ownFriction.Length && !(double.IsNaN(_ownFriction[particle]) && double.IsNaN(_ownRestitution[particle]))
+            ? (_ownFriction[particle], _ownRestitution[particle])
+            : null;
     }
 
     private double FrictionWith(Obstacle obstacle, int particle) =>

@@ -11,16 +11,14 @@ public class ParticleMaterialTests
     [Fact]
     public void A_particles_own_restitution_meets_the_obstacles_by_their_mean()
     {
-        foreach (var (own, expected) in new[] { (double.NaN, 0.2), (1.0, 0.6), (0.0, 0.1) })
+        // NaN twice: no material of its own; a friction of its own without a restitution: the obstacle's restitution alone.
+        foreach (var (friction, own, expected) in new[] { (double.NaN, double.NaN, 0.2), (0.7, double.NaN, 0.2), (0.0, 1.0, 0.6), (0.0, 0.0, 0.1) })
         {
             var world = new ParticleWorld();
             world.AddParticle(new Vector3d(0, 0.05, 0), new Vector3d(0, -1, 0), 1.0);
             var contacts = new ContactSet();
             contacts.Add(PlaneObstacle.Ground(restitution: 0.2));
-            if (!double.IsNaN(own))
-            {
-                contacts.SetParticleMaterial(0, 1, 0.0, own);
-            }
+            contacts.SetParticleMaterial(0, 1, friction, own);
 
             world.AddConstraints(contacts);
             world.Step(new SemiImplicitEuler(), 0.1);
@@ -56,6 +54,11 @@ public class ParticleMaterialTests
         Assert.Null(contacts.GetParticleMaterial(1));
         Assert.Equal((0.5, 1.0), contacts.GetParticleMaterial(4));
         Assert.Null(contacts.GetParticleMaterial(5));
+        contacts.SetParticleMaterial(6, 1, double.NaN, double.NaN);
+        Assert.Null(contacts.GetParticleMaterial(6));
+        contacts.SetParticleMaterial(6, 1, 0.3, double.NaN);
+        Assert.Equal(0.3, contacts.GetParticleMaterial(6)!.Value.Friction);
+        Assert.True(double.IsNaN(contacts.GetParticleMaterial(6)!.Value.Restitution));
         Assert.Contains("-1", Assert.Throws<ArgumentOutOfRangeException>(() => contacts.SetParticleMaterial(0, 1, -1, 0)).Message);
         Assert.Contains("1.5", Assert.Throws<ArgumentOutOfRangeException>(() => contacts.SetParticleMaterial(0, 1, 0, 1.5)).Message);
 

@@ -13,6 +13,12 @@ namespace ParticlePhysics.Tests.Scenes;
 public class SceneRunTests
 {
     private static readonly string _folder = Path.Combine(ReadmeExamplesTests.RepositoryRoot(), "samples", "scenes");
+    private readonly Xunit.Abstractions.ITestOutputHelper _output;
+
+    public SceneRunTests(Xunit.Abstractions.ITestOutputHelper output)
+    {
+        _output = output;
+    }
 
     public static TheoryData<string> Samples()
     {
@@ -53,7 +59,7 @@ public class SceneRunTests
             colliders.UnionWith(scene.ColliderKinds);
         }
 
-        Assert.Equal(new[] { "cables", "cloth", "load", "particles", "rods", "rope", "springs" }, objects.OrderBy(k => k, StringComparer.Ordinal));
+        Assert.Equal(new[] { "cables", "cloth", "load", "particles", "rigid", "rods", "rope", "soft", "springs" }, objects.OrderBy(k => k, StringComparer.Ordinal));
         Assert.Equal(new[] { "box", "capsule", "heightfield", "mesh", "plane", "sphere" }, colliders.OrderBy(k => k, StringComparer.Ordinal));
     }
 
@@ -121,6 +127,63 @@ public class SceneRunTests
             Assert.InRange(x, -0.4 + 0.05 - 1e-3, 0.4 - 0.05 + 1e-3);
             Assert.InRange(z, -0.4 + 0.05 - 1e-3, 0.4 - 0.05 + 1e-3);
         }
+    }
+
+    [Fact]
+    public void The_bodies_fall_into_their_tank_and_come_to_rest_without_passing_into_each_other()
+    {
+        var path = Path.Combine(_folder, "bodies.json");
+        var start = Scene.Load(path).Build();
+        var body = BodyOfEachParticle(path, start.Count);
+        var run = DemoProcess.Run("scene", path, "--format", "csv", "--every", "100").Csv();
+        var end = run.Rows[^1];
+        var deepest = double.PositiveInfinity;
+        for (var i = 0; i < start.Count; i++)
+        {
+            double x = end[1 + (6 * i)], y = end[2 + (6 * i)], z = end[3 + (6 * i)], r = start.GetRadius(i);
+            Assert.InRange(y, r - 1e-3, 0.8);
+            Assert.InRange(x, -0.6 + r - 1e-3, 0.6 - r + 1e-3);
+            Assert.InRange(z, -0.6 + r - 1e-3, 0.6 - r + 1e-3);
+            for (var j = 0; j < i; j++)
+            {
+                if (body[i] != body[j])
+                {
+                    var d = new Vector3d(x - end[1 + (6 * j)], y - end[2 + (6 * j)], z - end[3 + (6 * j)]).Length;
+                    deepest = Math.Min(deepest, d - r - start.GetRadius(j));
+                }
+            }
+        }
+
+        // Two bodies touch through their particles: a few mm of overlap at most under the pile's weight.
+        var energy = end[Array.IndexOf(run.Header, "kinetic_energy")];
+        var speed = end[Array.IndexOf(run.Header, "max_speed")];
+        _output.WriteLine($"deepest overlap of two particles of two bodies {-deepest:E3} m; after 8 s, kinetic energy {energy:E3} J, fastest particle {speed:E3} m/s");
+        Assert.True(deepest > -0.005, $"two particles of two bodies overlap by {-deepest} m");
+        Assert.True(energy < 0.01 && speed < 0.05, $"the pile still moves: {energy} J, {speed} m/s");
+    }
+
+    // The scene's bodies in order: boxes of the lattice rule's counts, then the boulder with the rest.
+    private static int[] BodyOfEachParticle(string path, int count)
+    {
+        using var document = System.Text.Json.JsonDocument.Parse(File.ReadAllText(path), new System.Text.Json.JsonDocumentOptions { CommentHandling = System.Text.Json.JsonCommentHandling.Skip });
+        var body = new int[count];
+        var next = 0;
+        var index = 0;
+        foreach (var o in document.RootElement.GetProperty("objects").EnumerateArray())
+        {
+            var n = count - next;
+            if (o.TryGetProperty("box", out var box))
+            {
+                var size = box.GetProperty("size").EnumerateArray().Select(e => e.GetDouble()).ToArray();
+                var (nx, ny, nz) = ParticlePhysics.Bodies.BodyLattice.BoxCounts(new Vector3d(size[0], size[1], size[2]), o.GetProperty("spacing").GetDouble());
+                n = nx * ny * nz;
+            }
+
+            body.AsSpan(next, n).Fill(index++);
+            next += n;
+        }
+
+        return body;
     }
 
     [Fact]
