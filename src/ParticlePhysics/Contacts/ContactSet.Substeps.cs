@@ -75,6 +75,11 @@ public sealed partial class ContactSet
                     : SeparatePositions(in context, a, b, radii, out normal);
                 if (depth > 0.0)
                 {
+                    if (_anyGrains && (IsGrain(a) || IsGrain(b)))
+                    {
+                        StickGrainPair(in context, a, b, normal, depth, radii);
+                    }
+
                     AddSubstepContact(-1, a, b, normal, depth, Vector3d.Dot(Read(v, a) - Read(v, b), normal));
                 }
             }
@@ -156,12 +161,20 @@ public sealed partial class ContactSet
                 position -= gap * normal;
                 var depth = -gap;
 
-                // Static friction: undo the tangential move relative to the obstacle when it is within mu |C|.
-                var move = position - Read(previous, i) - (h * obstacle.Velocity);
-                var tangential = move - (Vector3d.Dot(move, normal) * normal);
-                if (tangential.Length < FrictionWith(obstacle, i) * depth)
+                // Static friction: undo the tangential move relative to the obstacle when it is within mu |C| (a
+                // grain's, of its contact point, by its move and its spin).
+                if (_anyGrains && IsGrain(i))
                 {
-                    position -= tangential;
+                    position = StickGrain(i, position, Read(previous, i), obstacle, normal, depth, inverseMasses[i], radius, h);
+                }
+                else
+                {
+                    var move = position - Read(previous, i) - (h * obstacle.Velocity);
+                    var tangential = move - (Vector3d.Dot(move, normal) * normal);
+                    if (tangential.Length < FrictionWith(obstacle, i) * depth)
+                    {
+                        position -= tangential;
+                    }
                 }
 
                 // The velocity the integrator takes from the positions changes by this push over h: an impulse m dx / h.
@@ -214,12 +227,23 @@ public sealed partial class ContactSet
 
             // The change of relative velocity, shared out as impulse / mass.
             var vn = Vector3d.Dot(relative, normal);
-            var tangent = relative - (vn * normal);
-            var speed = tangent.Length;
             var change = Vector3d.Zero;
-            if (speed > 0.0)
+            var b = k < 0 ? _substep.Second(c) : -1;
+            if (_anyGrains && (IsGrain(a) || (b >= 0 && IsGrain(b))))
             {
-                change -= (Math.Min(mu * _substep.Depth(c) / h, speed) / speed) * tangent;
+                var radii = context.Radii.ForReading();
+                var rolling = k >= 0 ? (IsGrain(a) ? _rolling[a] : 0.0) : PairRolling(a, b);
+                var p = SolveGrainFriction(a, b, relative, normal, mu, _substep.Depth(c) / (h * w), wa, wb, Radius(radii, a), b >= 0 ? Radius(radii, b) : 0.0, rolling);
+                change += w * p;
+            }
+            else
+            {
+                var tangent = relative - (vn * normal);
+                var speed = tangent.Length;
+                if (speed > 0.0)
+                {
+                    change -= (Math.Min(mu * _substep.Depth(c) / h, speed) / speed) * tangent;
+                }
             }
 
             var approach = _substep.Approach(c);
@@ -233,7 +257,6 @@ public sealed partial class ContactSet
 
             if (k < 0)
             {
-                var b = _substep.Second(c);
                 Write(v, b, Read(v, b) - ((wb / w) * change));
             }
         }

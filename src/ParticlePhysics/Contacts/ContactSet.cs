@@ -190,6 +190,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     {
         _log.Save();
         _reactions.Save();
+        SaveSpins();
         _reactions.Clear(_obstacles.Count);
         _bracketed = true;
     }
@@ -203,6 +204,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     {
         _log.Restore();
         _reactions.Restore();
+        RestoreSpins();
         _bracketed = false;
     }
 
