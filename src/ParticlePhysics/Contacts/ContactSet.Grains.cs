@@ -17,11 +17,15 @@ namespace ParticlePhysics.Contacts;
 /// -(r_a / I_a) n x P and omega_b by -(r_b / I_b) n x P.
 /// </para>
 /// <para>
-/// Static friction, in the projection: the contact point's move over the substep, u = dx_a - dx_b - h (r_a omega_a +
-/// r_b omega_b) x n (less the obstacle's h V), is undone in the tangent plane when |u_t| &lt; mu_s d (d the normal
-/// correction, Macklin et al. 2014's rule) by P = -u_t / K shared between moves and spins (a spin's share as omega +=
-/// its change / h). A grain that rolls keeps its contact point still and is not held back; one that would slide is.
-/// Dynamic friction, in the velocity pass: P = -v_t / K with |P| &lt;= mu_k J_n, J_n = (d / h) / (w_a + w_b) the
+/// Static friction on an obstacle, in the projection: a grain held still (its move over the substep undone in the
+/// tangent plane by moves alone, its spin across the normal stopped) when that takes a friction within mu_s N and a
+/// rolling torque within mu_r r N, so a grain on a slope with tan(theta) &lt;= mu_r stays put;
+/// else its contact point's move u = dx - h V - h r omega x n is undone when |u_t| &lt; mu_s d (d the normal correction,
+/// Macklin et al. 2014's rule) by P = -u_t / K shared between moves and spins (a spin's share as omega += its change /
+/// h), so a grain that rolls keeps its contact point still and one that would slide is held. Between two particles
+/// friction acts in the velocity pass only, as for plain particles: a stick in the projection there (the same rule,
+/// with or without spins) made a pyramid of 204 grains, friction 1, collapse where plain particles stand.
+/// /// Dynamic friction, in the velocity pass: P = -v_t / K with |P| &lt;= mu_k J_n, J_n = (d / h) / (w_a + w_b) the
 /// normal impulse of the projection. Rolling resistance, after it: the relative spin across the normal is taken down by
 /// an angular impulse L = -omega_r / (1/I_a + 1/I_b) with |L| &lt;= mu_r R J_n, R = r_a r_b / (r_a + r_b) (r_a on an
 /// obstacle): a torque up to mu_r R times the normal force, the constant-torque model of Ai et al. (2011). So a grain
@@ -39,8 +43,8 @@ public sealed partial class ContactSet
 
     /// <summary>
     /// Makes the particles <paramref name="first"/> to <paramref name="first"/> + <paramref name="count"/> - 1 grains:
-    /// solid spheres of their radius with a spin, a static friction coefficient <paramref name="staticFriction"/> (met
-    /// with the other side's friction by their mean) and a rolling friction coefficient
+    /// solid spheres of their radius with a spin, a static friction coefficient <paramref name="staticFriction"/> on
+    /// obstacles (met with the obstacle's friction by their mean) and a rolling friction coefficient
     /// <paramref name="rollingFriction"/> (the resisting torque over the normal force times the contact's radius; a
     /// grain's alone where the other side is not one, the mean where both are). Their dynamic friction is their
     /// material's (<see cref="SetParticleMaterial"/>), or the set's. Spins start at rest. Indices past the world's
@@ -117,46 +121,8 @@ public sealed partial class ContactSet
 
     private Vector3d SpinOf(int i) => IsGrain(i) ? _spin[i] : Vector3d.Zero;
 
-    // A side's static friction: a grain's own, else its dynamic one.
-    private double StaticSide(int i) => IsGrain(i) ? _staticFriction[i] : OwnOr(_ownFriction, i, _particleFriction);
-
     private double PairRolling(int a, int b) =>
         IsGrain(a) && IsGrain(b) ? 0.5 * (_rolling[a] + _rolling[b]) : IsGrain(a) ? _rolling[a] : IsGrain(b) ? _rolling[b] : 0.0;
-
-    /// <summary>
-    /// Static friction of a pair with a grain, after the pair's normal projection: its contact point's tangential move
-    /// undone when within mu_s d, by moves and spins (see the type's remarks).
-    /// </summary>
-    private void StickGrainPair(in ConstraintContext context, int a, int b, Vector3d n, double depth, Span<double> radii)
-    {
-        var inverseMasses = context.InverseMasses.ForReading();
-        var previous = context.StartPositions.ForReading();
-        var x = context.Positions;
-        var h = context.Dt;
-        double wa = inverseMasses[a], wb = inverseMasses[b], ra = Radius(radii, a), rb = Radius(radii, b);
-        double ka = SpinShare(a, wa, ra), kb = SpinShare(b, wb, rb);
-        var u = Read(x, a) - Read(previous, a) - (Read(x, b) - Read(previous, b)) - (h * Vector3d.Cross((ra * SpinOf(a)) + (rb * SpinOf(b)), n));
-        var ut = u - (Vector3d.Dot(u, n) * n);
-        var k = wa + wb + ka + kb;
-        if (!(ut.Length < 0.5 * (StaticSide(a) + StaticSide(b)) * depth) || k == 0.0)
-        {
-            return;
-        }
-
-        var p = -ut / k;
-        Write(x, a, Read(x, a) + (wa * p));
-        Write(x, b, Read(x, b) - (wb * p));
-        var turn = Vector3d.Cross(n, p) / h;
-        if (ka > 0.0)
-        {
-            _spin[a] -= (ka / ra) * turn;
-        }
-
-        if (kb > 0.0)
-        {
-            _spin[b] -= (kb / rb) * turn;
-        }
-    }
 
     /// <summary>Static friction of a grain on an obstacle: returns its position with the contact point's tangential move undone when within mu_s d.</summary>
     private Vector3d StickGrain(int i, Vector3d position, Vector3d start, Obstacle obstacle, Vector3d n, double depth, double w, double r, double h)
@@ -164,7 +130,16 @@ public sealed partial class ContactSet
         var k = SpinShare(i, w, r);
         var u = position - start - (h * obstacle.Velocity) - (h * r * Vector3d.Cross(_spin[i], n));
         var ut = u - (Vector3d.Dot(u, n) * n);
-        if (!(ut.Length < 0.5 * (_staticFriction[i] + obstacle.Friction) * depth) || w == 0.0)
+        var muS = 0.5 * (_staticFriction[i] + obstacle.Friction);
+        var move = position - start - (h * obstacle.Velocity);
+        var tangential = move - (Vector3d.Dot(move, n) * n);
+        if (HoldsStill(tangential, w, muS * depth, _rolling[i] * r * depth, h, k, r, _spin[i], n))
+        {
+            StopRolling(i, k, n);
+            return position - tangential;
+        }
+
+        if (!(ut.Length < muS * depth) || w == 0.0)
         {
             return position;
         }
@@ -176,6 +151,45 @@ public sealed partial class ContactSet
         }
 
         return position + (w * p);
+    }
+
+    /// <summary>
+    /// Static rolling, in the projection: whether a contact can hold one side still, its tangential move u_t (of the
+    /// centres, relative) undone by moves alone and its spin across the normal stopped, within the contact's limits
+    /// (given times h w, as mu d): a friction |u_t| &lt;= mu_s d, the friction's torque on the side r |u_t| and the
+    /// angular impulse that stops it (I / h) |omega_t| h w each within mu_r R d. The friction's torque on each grain is
+    /// then taken by the rolling resistance there, as the grain's other contacts would share it in a pile at rest; it
+    /// is exact on an obstacle (a grain on a slope holds while tan(theta) &lt;= mu_r). Past a limit, the contact point's
+    /// stick and the velocity pass's resistance let it roll.
+    /// </summary>
+    private static bool HoldsStill(Vector3d ut, double w, double frictionLimit, double rollingLimit, double h, double k, double r, Vector3d spin, Vector3d n)
+    {
+        if (!(w > 0.0) || !(rollingLimit > 0.0))
+        {
+            return false;
+        }
+
+        if (!(ut.Length <= frictionLimit))
+        {
+            return false;
+        }
+
+        if (!(k > 0.0))
+        {
+            return true;
+        }
+
+        var across = spin - (Vector3d.Dot(spin, n) * n);
+        return r * ut.Length <= rollingLimit && (r * r / k) * across.Length * h * w <= rollingLimit;
+    }
+
+    // A held grain's spin across the contact's normal stops; its spin about the normal (twist) is left.
+    private void StopRolling(int i, double k, Vector3d n)
+    {
+        if (k > 0.0)
+        {
+            _spin[i] = Vector3d.Dot(_spin[i], n) * n;
+        }
     }
 
     /// <summary>

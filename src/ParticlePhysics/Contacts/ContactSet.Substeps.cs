@@ -75,11 +75,6 @@ public sealed partial class ContactSet
                     : SeparatePositions(in context, a, b, radii, out normal);
                 if (depth > 0.0)
                 {
-                    if (_anyGrains && (IsGrain(a) || IsGrain(b)))
-                    {
-                        StickGrainPair(in context, a, b, normal, depth, radii);
-                    }
-
                     AddSubstepContact(-1, a, b, normal, depth, Vector3d.Dot(Read(v, a) - Read(v, b), normal));
                 }
             }

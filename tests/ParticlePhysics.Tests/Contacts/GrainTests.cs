@@ -111,6 +111,78 @@ public class GrainTests
         Assert.Equal(Vector3d.Zero, contacts.GetSpin(5));
     }
 
+    [Theory]
+    [InlineData(20.0, 0.5)]
+    [InlineData(30.0, 0.2)]
+    public void A_grain_on_a_slope_stays_put_while_tan_theta_is_within_mu_r_and_rolls_at_five_sevenths_of_g_sin_less_mu_r_cos_past_it(double degrees, double muR)
+    {
+        // Held, friction m g sin(theta) <= mu N and the torque it makes, r m g sin(theta), within mu_r r N. Past that, the
+        // rolling resistance is the torque mu_r r N: (7/5) m a = m g (sin(theta) - mu_r cos(theta)).
+        var theta = degrees * Math.PI / 180;
+        var normal = new Vector3d(-Math.Sin(theta), Math.Cos(theta), 0);
+        var (world, contacts) = Grain(R * normal, Vector3d.Zero, new PlaneObstacle(Vector3d.Zero, normal, 0, 1.0));
+        contacts.SetGranular(0, 1, 1.0, muR);
+        Run(world, 1.0);
+        var travelled = (world.GetPosition(0) - (R * normal)).Length;
+        var rolls = Math.Tan(theta) > muR;
+        var expected = rolls ? 0.5 * (5.0 / 7) * G * (Math.Sin(theta) - (muR * Math.Cos(theta))) : 0.0;
+        _output.WriteLine($"{degrees} degrees, mu_r = {muR}: {travelled:E6} m in 1 s against {expected:E6} m");
+        if (rolls)
+        {
+            Assert.True(Math.Abs(travelled - expected) < 0.01 * expected, $"{travelled} m against {expected} m");
+        }
+        else
+        {
+            Assert.True(travelled < 1e-12 && world.GetVelocity(0).Length < 1e-12 && contacts.GetSpin(0).Length < 1e-12, $"it crept {travelled} m");
+        }
+    }
+
+    [Fact]
+    public void A_pyramid_of_grains_that_cannot_roll_stands_as_one_of_plain_particles_does()
+    {
+        // Eight layers of square packing, 204 spheres of radius 1 cm, friction 1 between them and on the ground: plain
+        // particles stand, and so do grains whose rolling friction never lets them roll.
+        foreach (var grains in new[] { false, true })
+        {
+            var world = new ParticleWorld();
+            world.AddForce(Gravity.Down(G));
+            var contacts = new ContactSet { ParticleCollisions = true, ParticleFriction = 1.0 };
+            contacts.Add(PlaneObstacle.Ground(friction: 1.0));
+            world.AddConstraints(contacts);
+            const double r = 0.01;
+            for (var layer = 0; layer < 8; layer++)
+            {
+                var m = 8 - layer;
+                for (var i = 0; i < m * m; i++)
+                {
+                    var p = new Vector3d(((i % m) - ((m - 1) / 2.0)) * 2 * r, r + (layer * Math.Sqrt(2) * r), ((i / m) - ((m - 1) / 2.0)) * 2 * r);
+                    world.SetRadius(world.AddParticle(p, 1e-3), r);
+                }
+            }
+
+            if (grains)
+            {
+                contacts.SetGranular(0, world.Count, 1.0, 100.0);
+            }
+
+            var start = new Vector3d[world.Count];
+            for (var i = 0; i < world.Count; i++)
+            {
+                start[i] = world.GetPosition(i);
+            }
+
+            Run(world, 4.0);
+            var moved = 0.0;
+            for (var i = 0; i < world.Count; i++)
+            {
+                moved = Math.Max(moved, (world.GetPosition(i) - start[i]).Length);
+            }
+
+            _output.WriteLine($"{(grains ? "grains" : "plain particles")}: after 4 s the farthest of {world.Count} moved {moved:E2} m");
+            Assert.True(moved < 1e-3, $"the pyramid of {(grains ? "grains" : "plain particles")} slumped: a particle moved {moved} m");
+        }
+    }
+
     private static (ParticleWorld World, ContactSet Contacts) Grain(Vector3d position, Vector3d velocity, Obstacle ground)
     {
         var world = new ParticleWorld();
