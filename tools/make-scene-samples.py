@@ -278,6 +278,9 @@ def bodies():
         objects.append(body)
     objects.append({"type": "rigid", "mesh": {"obj": "boulder.obj"}, "position": [0.05, 3.3, -0.05], "spacing": 0.075,
                     "density": 800, "friction": 0.5, "angularVelocity": [0, 0, 2]})
+    # A column of sand poured last, off-centre: it slumps over the bodies into a pile against the tank's wall.
+    objects.append({"type": "granular", "box": {"min": [0.2, 3.8, 0.2], "max": [0.44, 4.4, 0.44]}, "spacing": 0.04,
+                    "density": 1600, "friction": 0.8, "rollingFriction": 0.3})
     wall = 0.05
     return {
         "integrator": {"name": "xpbd", "substeps": 10},
@@ -314,4 +317,6 @@ dump("samples/scenes/cloth-fold.json", [
     "(thickness 1 cm) keeps it from passing through itself. Written by tools/make-scene-samples.py."], cloth_fold())
 dump("samples/scenes/bodies.json", [
     "Eleven boxes, eight rigid and three soft (shape matching of stiffness 0.6), and a rigid boulder filled from",
-    "boulder.obj, dropped into a tank: they land on each other, tumble and settle. Written by tools/make-scene-samples.py."], bodies())
+    "boulder.obj, dropped into a tank, then a column of 540 grains of sand (friction 0.8, rolling friction 0.3) poured",
+    "over them: they land on each other, tumble and settle, and the sand runs into the gaps and piles against a wall.",
+    "Written by tools/make-scene-samples.py."], bodies())

@@ -111,9 +111,10 @@ public sealed class Scene
             text.AppendLine($"cloth triangles: {Count("cloth triangles")}, bending elements: {Count("bending elements")}");
         }
 
-        if (counts.ContainsKey("rigid bodies") || counts.ContainsKey("soft bodies"))
+        var solids = counts.ContainsKey("rigid bodies") || counts.ContainsKey("soft bodies") || counts.ContainsKey("grains");
+        if (solids)
         {
-            text.AppendLine($"rigid bodies: {Count("rigid bodies")}, soft bodies: {Count("soft bodies")}");
+            text.AppendLine($"rigid bodies: {Count("rigid bodies")}, soft bodies: {Count("soft bodies")}, grains: {Count("grains")}");
         }
 
         text.AppendLine(_colliders.Count == 0
@@ -121,7 +122,7 @@ public sealed class Scene
             : "colliders: " + string.Join(", ", _colliders.GroupBy(c => c.Kind).Select(g => Invariant($"{g.Count()} {g.Key}"))));
         text.AppendLine(s.ParticleCollisions
             ? Invariant($"particle collisions: on (restitution {s.ParticleRestitution:R}, friction {s.ParticleFriction:R})")
-            : counts.ContainsKey("rigid bodies") || counts.ContainsKey("soft bodies")
+            : solids
                 ? "particle collisions: off (but solids collide with every particle with a radius)"
                 : "particle collisions: off");
         text.AppendLine(Invariant($"gravity: [{s.Gravity.X:R}, {s.Gravity.Y:R}, {s.Gravity.Z:R}] m/s^2, drag: {s.Drag:R} N s/m"));

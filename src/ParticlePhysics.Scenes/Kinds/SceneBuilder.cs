@@ -32,6 +32,7 @@ internal sealed class SceneBuilder
     private TriangleAerodynamics? _aerodynamics;
     private readonly List<(int[] Triangles, double Thickness)> _selfCollisions = new();
     private readonly List<(int First, int Count, double Friction, double Restitution)> _solids = new();
+    private readonly List<(int First, int Count, double Friction, double RollingFriction)> _grains = new();
     private ShapeMatching? _bodies;
 
     public SceneBuilder(ParticleWorld world, string file, SceneSettings settings)
@@ -81,6 +82,16 @@ internal sealed class SceneBuilder
     /// without <c>particleCollisions</c>, with their own friction and restitution (NaN: none of their own).
     /// </summary>
     public void AddSolid(int first, int count, double friction, double restitution) => _solids.Add((first, count, friction, restitution));
+
+    /// <summary>
+    /// Notes a block of grains: solids (<see cref="AddSolid"/>) whose friction is both their static and dynamic one,
+    /// with a rolling friction (<see cref="ContactSet.SetGranular"/>).
+    /// </summary>
+    public void AddGranular(int first, int count, double friction, double rollingFriction)
+    {
+        AddSolid(first, count, friction, double.NaN);
+        _grains.Add((first, count, friction, rollingFriction));
+    }
 
     /// <summary>Notes a cloth's mesh edge: its two particles do not collide with each other.</summary>
     public void AddMeshEdge(int first, int second) => (_meshEdges ??= new ExcludedPairs()).Add(first, second);
@@ -195,6 +206,11 @@ internal sealed class SceneBuilder
                 {
                     contacts.SetParticleMaterial(first, count, friction, restitution);
                 }
+            }
+
+            foreach (var (first, count, friction, rolling) in _grains)
+            {
+                contacts.SetGranular(first, count, friction, rolling);
             }
 
             world.AddConstraints(contacts);

@@ -36,7 +36,7 @@ internal sealed class SceneKinds
         kinds.Add(new RopeKind());
         kinds.Add(SolidKind.Rigid);
         kinds.Add(SolidKind.Soft);
-        kinds.Add(NotBuiltYet.Object("granular", "solids from particles"));
+        kinds.Add(new GranularKind());
         kinds.Add(NotBuiltYet.Object("fluid", "fluids"));
 
         kinds.Add(new PlaneKind());

@@ -59,7 +59,7 @@ public class SceneRunTests
             colliders.UnionWith(scene.ColliderKinds);
         }
 
-        Assert.Equal(new[] { "cables", "cloth", "load", "particles", "rigid", "rods", "rope", "soft", "springs" }, objects.OrderBy(k => k, StringComparer.Ordinal));
+        Assert.Equal(new[] { "cables", "cloth", "granular", "load", "particles", "rigid", "rods", "rope", "soft", "springs" }, objects.OrderBy(k => k, StringComparer.Ordinal));
         Assert.Equal(new[] { "box", "capsule", "heightfield", "mesh", "plane", "sphere" }, colliders.OrderBy(k => k, StringComparer.Ordinal));
     }
 
@@ -130,20 +130,32 @@ public class SceneRunTests
     }
 
     [Fact]
-    public void The_bodies_fall_into_their_tank_and_come_to_rest_without_passing_into_each_other()
+    public void The_bodies_and_the_sand_fall_into_their_tank_without_passing_into_each_other_and_the_bodies_come_to_rest()
     {
         var path = Path.Combine(_folder, "bodies.json");
         var start = Scene.Load(path).Build();
         var body = BodyOfEachParticle(path, start.Count);
-        var run = DemoProcess.Run("scene", path, "--format", "csv", "--every", "100").Csv();
+        var run = DemoProcess.Run("scene", path, "--format", "csv", "--every", "60").Csv();
         var end = run.Rows[^1];
+        var before = run.Rows[^2];
         var deepest = double.PositiveInfinity;
+        double moved = 0.0, sandMoved = 0.0;
+        var grains = Scene.Load(path).Describe().Contains("grains: 540", StringComparison.Ordinal) ? 540 : throw new InvalidOperationException("the sample's sand changed");
         for (var i = 0; i < start.Count; i++)
         {
             double x = end[1 + (6 * i)], y = end[2 + (6 * i)], z = end[3 + (6 * i)], r = start.GetRadius(i);
             Assert.InRange(y, r - 1e-3, 0.8);
             Assert.InRange(x, -0.6 + r - 1e-3, 0.6 - r + 1e-3);
             Assert.InRange(z, -0.6 + r - 1e-3, 0.6 - r + 1e-3);
+            var step = new Vector3d(x - before[1 + (6 * i)], y - before[2 + (6 * i)], z - before[3 + (6 * i)]).Length;
+            if (i < start.Count - grains)
+            {
+                moved = Math.Max(moved, step);
+            }
+            else
+            {
+                sandMoved = Math.Max(sandMoved, step);
+            }
             for (var j = 0; j < i; j++)
             {
                 if (body[i] != body[j])
@@ -154,36 +166,60 @@ public class SceneRunTests
             }
         }
 
-        // Two bodies touch through their particles: a few mm of overlap at most under the pile's weight.
+        // Two solids (two bodies, a body and a grain, two grains) touch through their particles: a few mm of overlap at
+        // most under the pile's weight. The bodies are at rest: none of their particles moves a mm in the last second.
+        // The sand still creeps at about a cm per second (a pile of grains does not yet stand still: docs/scenes.md).
         var energy = end[Array.IndexOf(run.Header, "kinetic_energy")];
-        var speed = end[Array.IndexOf(run.Header, "max_speed")];
-        _output.WriteLine($"deepest overlap of two particles of two bodies {-deepest:E3} m; after 8 s, kinetic energy {energy:E3} J, fastest particle {speed:E3} m/s");
-        Assert.True(deepest > -0.005, $"two particles of two bodies overlap by {-deepest} m");
-        Assert.True(energy < 0.01 && speed < 0.05, $"the pile still moves: {energy} J, {speed} m/s");
+        _output.WriteLine($"deepest overlap of two particles of two solids {-deepest:E3} m; in the last second the farthest particle of a body moved {moved:E3} m, of the sand {sandMoved:E3} m; after 8 s, kinetic energy {energy:E3} J");
+        Assert.True(deepest > -0.005, $"two particles of two solids overlap by {-deepest} m");
+        Assert.True(moved < 1e-3, $"a particle of a body moved {moved} m in the last second");
+        Assert.True(sandMoved < 0.03, $"a grain moved {sandMoved} m in the last second");
+        Assert.True(energy < 0.01, $"the pile still holds {energy} J");
     }
 
-    // The scene's bodies in order: boxes of the lattice rule's counts, then the boulder with the rest.
+    // The scene's solids in order: boxes of the lattice rule's counts, the boulder with what the others leave, and each
+    // grain a solid of its own.
     private static int[] BodyOfEachParticle(string path, int count)
     {
         using var document = System.Text.Json.JsonDocument.Parse(File.ReadAllText(path), new System.Text.Json.JsonDocumentOptions { CommentHandling = System.Text.Json.JsonCommentHandling.Skip });
+        var objects = document.RootElement.GetProperty("objects").EnumerateArray().ToArray();
+        var counts = new int[objects.Length];
+        for (var k = 0; k < objects.Length; k++)
+        {
+            if (objects[k].TryGetProperty("box", out var box))
+            {
+                var spacing = objects[k].GetProperty("spacing").GetDouble();
+                var size = box.TryGetProperty("size", out var s)
+                    ? Vector(s)
+                    : Vector(box.GetProperty("max")) - Vector(box.GetProperty("min"));
+                var (nx, ny, nz) = ParticlePhysics.Bodies.BodyLattice.BoxCounts(size, spacing);
+                counts[k] = nx * ny * nz;
+            }
+        }
+
+        var mesh = Array.FindIndex(objects, o => !o.TryGetProperty("box", out _));
+        counts[mesh] = count - counts.Sum();
         var body = new int[count];
         var next = 0;
-        var index = 0;
-        foreach (var o in document.RootElement.GetProperty("objects").EnumerateArray())
+        var id = 0;
+        for (var k = 0; k < objects.Length; k++)
         {
-            var n = count - next;
-            if (o.TryGetProperty("box", out var box))
+            var grains = objects[k].GetProperty("type").GetString() == "granular";
+            for (var n = 0; n < counts[k]; n++)
             {
-                var size = box.GetProperty("size").EnumerateArray().Select(e => e.GetDouble()).ToArray();
-                var (nx, ny, nz) = ParticlePhysics.Bodies.BodyLattice.BoxCounts(new Vector3d(size[0], size[1], size[2]), o.GetProperty("spacing").GetDouble());
-                n = nx * ny * nz;
+                body[next++] = grains ? id++ : id;
             }
 
-            body.AsSpan(next, n).Fill(index++);
-            next += n;
+            id += grains ? 0 : 1;
         }
 
         return body;
+
+        static Vector3d Vector(System.Text.Json.JsonElement e)
+        {
+            var v = e.EnumerateArray().Select(x => x.GetDouble()).ToArray();
+            return new Vector3d(v[0], v[1], v[2]);
+        }
     }
 
     [Fact]
