@@ -188,6 +188,7 @@ public sealed partial class ContactSet
         var v = context.Velocities;
         var inverseMasses = context.InverseMasses.ForReading();
         var h = context.Dt;
+        var radii = context.Radii.ForReading();
         CountContacts(_substep.Count);
         for (var c = 0; c < _substep.Count; c++)
         {
@@ -226,7 +227,6 @@ public sealed partial class ContactSet
             var b = k < 0 ? _substep.Second(c) : -1;
             if (_anyGrains && (IsGrain(a) || (b >= 0 && IsGrain(b))))
             {
-                var radii = context.Radii.ForReading();
                 var rolling = k >= 0 ? (IsGrain(a) ? _rolling[a] : 0.0) : PairRolling(a, b);
                 var p = SolveGrainFriction(a, b, relative, normal, mu, _substep.Depth(c) / (h * w), wa, wb, Radius(radii, a), b >= 0 ? Radius(radii, b) : 0.0, rolling);
                 change += w * p;
