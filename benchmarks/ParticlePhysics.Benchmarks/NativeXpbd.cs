@@ -84,6 +84,7 @@ internal sealed class NativeXpbd : IDisposable
             var libraries = new (string Name, string Source)[]
             {
                 (Library, "cloth_xpbd.c"), (NativeLeanXpbd.Library, "cloth_xpbd_lean.c"), (NativeMeshXpbd.Library, "mesh_xpbd.c"),
+                (NativeShapeMatching.Library, "shape_matching.c"),
             };
             string PathOf(string name) => Path.Combine(directory, "build", $"lib{name}.so");
             var stale = false;

@@ -30,6 +30,8 @@ namespace ParticlePhysics.Benchmarks;
 /// <item><c>mesh-cloth --c | --scaling | --implicit | --cores</c>: a mesh cloth with membrane and bending: its
 /// projections against their C reference, the cost per triangle from 1,000 to 100,000 triangles, implicit Euler
 /// against the spring cloth, two cores against one (<see cref="MeshClothComparison"/>).</item>
+/// <item><c>bodies --c [--bodies 100] [--side 4] [--passes 200]</c>: the rigid bodies' shape matching against its
+/// plain C reference, after a bit-for-bit check (<see cref="BodiesComparison"/>).</item>
 /// <item><c>cloth-world --aerodynamics [--n 64]</c>: what the air's drag and lift cost against the same mesh cloth
 /// without them (<see cref="ClothWorldCosts"/>).</item>
 /// <item><c>runner [--parallelism 2] [--rounds 5] [--ms 150] [--spin-us N] [--engine xpbd|implicit-euler [--n 64] [--tolerance 1e-3]]</c>: the cost
@@ -77,6 +79,11 @@ internal static class Program
         if (args.Length > 0 && args[0] == "xpbd")
         {
             return XpbdComparison.Run(args[1..]);
+        }
+
+        if (args.Length > 0 && args[0] == "bodies")
+        {
+            return BodiesComparison.Run(args[1..]);
         }
 
         if (args.Length > 0 && args[0] == "mesh-cloth")

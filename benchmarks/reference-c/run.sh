@@ -5,7 +5,8 @@
 #   run.sh --xpbd --run STEPS n       xpbd: STEPS frames from rest, then the checksum (for callgrind)
 #   run.sh --lean [n ...]             the lean xpbd (cloth_xpbd_lean.c: no damping, twelve structured batches, separate arrays)
 #   run.sh --build                    only builds (build/cloth_rk4, build/cloth_xpbd, build/libcloth_xpbd.so,
-#                                     build/cloth_xpbd_lean, build/libcloth_xpbd_lean.so, build/libmesh_xpbd.so)
+#                                     build/cloth_xpbd_lean, build/libcloth_xpbd_lean.so, build/libmesh_xpbd.so,
+#                                     build/libshape_matching.so)
 # The xpbd build adds -fno-math-errno: sqrt then compiles to the one instruction the JIT emits, instead of the
 # instruction plus a test and a call that sets errno for negative arguments; no result changes (IEEE sqrt is exact).
 # build/libcloth_xpbd.so is the same program as a shared library, which the BenchmarkDotNet comparison
@@ -29,6 +30,8 @@ mkdir -p build
 "$CC" $XPBD_CFLAGS -shared -fPIC -o build/libcloth_xpbd_lean.so cloth_xpbd_lean.c -lm
 # shellcheck disable=SC2086
 "$CC" $XPBD_CFLAGS -shared -fPIC -o build/libmesh_xpbd.so mesh_xpbd.c -lm
+# shellcheck disable=SC2086
+"$CC" $XPBD_CFLAGS -shared -fPIC -o build/libshape_matching.so shape_matching.c -lm
 program=cloth_rk4
 flags=$CFLAGS
 case "${1:-}" in

@@ -1,6 +1,7 @@
 using System;
 using System.Globalization;
 using System.Numerics;
+using System.Runtime.CompilerServices;
 using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics;
@@ -12,6 +13,7 @@ namespace ParticlePhysics;
 public readonly struct Vector3d : IEquatable<Vector3d>
 {
     /// <summary>Creates a vector from its three components.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public Vector3d(double x, double y, double z)
     {
         X = x;
@@ -41,28 +43,36 @@ public readonly struct Vector3d : IEquatable<Vector3d>
     public bool IsFinite => DoubleChecks.IsFinite(X) && DoubleChecks.IsFinite(Y) && DoubleChecks.IsFinite(Z);
 
     /// <summary>The dot product of two vectors.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static double Dot(Vector3d a, Vector3d b) => (a.X * b.X) + (a.Y * b.Y) + (a.Z * b.Z);
 
     /// <summary>The cross product a x b.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Vector3d Cross(Vector3d a, Vector3d b) =>
         new((a.Y * b.Z) - (a.Z * b.Y), (a.Z * b.X) - (a.X * b.Z), (a.X * b.Y) - (a.Y * b.X));
 
     /// <summary>Component-wise sum.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Vector3d operator +(Vector3d a, Vector3d b) => new(a.X + b.X, a.Y + b.Y, a.Z + b.Z);
 
     /// <summary>Component-wise difference.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Vector3d operator -(Vector3d a, Vector3d b) => new(a.X - b.X, a.Y - b.Y, a.Z - b.Z);
 
     /// <summary>Negation.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Vector3d operator -(Vector3d a) => new(-a.X, -a.Y, -a.Z);
 
     /// <summary>Scaling by a number.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Vector3d operator *(double s, Vector3d a) => new(s * a.X, s * a.Y, s * a.Z);
 
     /// <summary>Scaling by a number.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Vector3d operator *(Vector3d a, double s) => new(s * a.X, s * a.Y, s * a.Z);
 
     /// <summary>Division by a number.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Vector3d operator /(Vector3d a, double s) => new(a.X / s, a.Y / s, a.Z / s);
 
     /// <summary>Exact component-wise equality.</summary>

@@ -1,4 +1,5 @@
 using System;
+using System.Runtime.CompilerServices;
 using ParticlePhysics.Numerics;
 
 namespace ParticlePhysics.Bodies;
@@ -30,6 +31,7 @@ internal readonly struct Quaternion4d
     public double Z { get; }
 
     /// <summary>The rotation a then b applied after it: b * a.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public static Quaternion4d operator *(Quaternion4d b, Quaternion4d a) => new(
         (b.W * a.W) - (b.X * a.X) - (b.Y * a.Y) - (b.Z * a.Z),
         (b.W * a.X) + (b.X * a.W) + (b.Y * a.Z) - (b.Z * a.Y),
@@ -73,6 +75,7 @@ internal readonly struct Quaternion4d
     }
 
     /// <summary>q v q*, as v + 2 w (u x v) + 2 u x (u x v) with u the vector part.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public Vector3d Rotate(Vector3d v)
     {
         var u = new Vector3d(X, Y, Z);
@@ -81,6 +84,7 @@ internal readonly struct Quaternion4d
     }
 
     /// <summary>q* v q: the inverse rotation of <paramref name="v"/>.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public Vector3d RotateInverse(Vector3d v)
     {
         var u = new Vector3d(-X, -Y, -Z);

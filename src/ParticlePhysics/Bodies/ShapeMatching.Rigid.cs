@@ -26,9 +26,10 @@ public sealed partial class ShapeMatching
         var v = context.Velocities;
         var momentum = Vector3d.Zero;
         var velocity = Vector3d.Zero;
+        var (particles, offsets, goals) = (_particles, _rest, _goals);
         for (var k = first; k < end; k++)
         {
-            var i = _particles[k];
+            var i = particles[k];
             var start = At(x0, i);
             var vi = fromVelocities ? At(v, i) : (At(x, i) - start) * inverseH;
             momentum += m[i] * Vector3d.Cross(start - c0, vi);
@@ -45,9 +46,9 @@ public sealed partial class ShapeMatching
         var q = (Quaternion4d.FromRotationVector(h * omega) * q0).Normalized();
         for (var k = first; k < end; k++)
         {
-            var i = _particles[k];
-            var goal = c + q.Rotate(_rest[k] - restCentre);
-            _goals[k] = goal;
+            var i = particles[k];
+            var goal = c + q.Rotate(offsets[k] - restCentre);
+            goals[k] = goal;
             if (w[i] != 0.0)
             {
                 Put(x, i, goal);
@@ -62,10 +63,10 @@ public sealed partial class ShapeMatching
             var spin = inertia.AngularVelocity(q, momentum);
             for (var k = first; k < end; k++)
             {
-                var i = _particles[k];
+                var i = particles[k];
                 if (w[i] != 0.0)
                 {
-                    Put(v, i, velocity + Vector3d.Cross(spin, _goals[k] - c));
+                    Put(v, i, velocity + Vector3d.Cross(spin, goals[k] - c));
                 }
             }
 
@@ -90,15 +91,16 @@ public sealed partial class ShapeMatching
         var velocity = Vector3d.Zero;
         var extra = Vector3d.Zero;
         var covariance = default(CovarianceSum);
+        var (particles, offsets, goals) = (_particles, _rest, _goals);
         for (var k = first; k < end; k++)
         {
-            var i = _particles[k];
+            var i = particles[k];
             var mi = m[i];
             var r = At(x, i) - c;
             var vi = At(v, i);
             velocity += mi * vi;
-            extra += mi * Vector3d.Cross(r, vi - ((_goals[k] - At(x0, i)) * inverseH));
-            covariance.Add(mi * r, _rest[k] - restCentre);
+            extra += mi * Vector3d.Cross(r, vi - ((goals[k] - At(x0, i)) * inverseH));
+            covariance.Add(mi * r, offsets[k] - restCentre);
         }
 
         velocity /= mass;
@@ -106,7 +108,7 @@ public sealed partial class ShapeMatching
         var omega = InertiaOf(body, m, restCentre).AngularVelocity(q, _momentum[body] + extra);
         for (var k = first; k < end; k++)
         {
-            var i = _particles[k];
+            var i = particles[k];
             if (w[i] != 0.0)
             {
                 Put(v, i, velocity + Vector3d.Cross(omega, At(x, i) - c));
@@ -122,12 +124,13 @@ public sealed partial class ShapeMatching
         var mass = 0.0;
         var centre = Vector3d.Zero;
         var rest = Vector3d.Zero;
+        var (particles, offsets) = (_particles, _rest); // locals: the loop reads no field again
         for (var k = first; k < end; k++)
         {
-            var i = _particles[k];
+            var i = particles[k];
             mass += m[i];
             centre += m[i] * At(x, i);
-            rest += m[i] * _rest[k];
+            rest += m[i] * offsets[k];
         }
 
         return (mass, centre / mass, rest / mass);

@@ -1,4 +1,5 @@
 using System;
+using System.Runtime.CompilerServices;
 using ParticlePhysics.Constraints;
 using ParticlePhysics.Numerics;
 
@@ -345,8 +346,10 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
         }
     }
 
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static Vector3d At(Span<double> values, int i) => new(values[3 * i], values[(3 * i) + 1], values[(3 * i) + 2]);
 
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
     private static void Put(Span<double> values, int i, Vector3d value)
     {
         values[3 * i] = value.X;
