@@ -14,7 +14,7 @@ namespace ParticlePhysics.Scenes.Objects;
 /// <c>mass</c> (total, kg, default 1) or <c>density</c> (kg/m^3, times the shape's volume), shared equally;
 /// <c>velocity</c> and <c>angularVelocity</c> (rad/s about the centre of mass, world axes), default rest;
 /// <c>friction</c> and <c>restitution</c> of its own (met with the other side's by their mean). <c>soft</c> adds
-/// <c>stiffness</c> (0..1], default 0.5. Its particles never collide with each other, and collide with every other
+/// <c>stiffness</c> (0..1], default 0.5, and <c>plasticity</c> {"yield" (m), "creep" ((0, 1], default 0.5)}. Its particles never collide with each other, and collide with every other
 /// particle of a radius and every collider.
 /// </summary>
 internal sealed class SolidKind : ISceneObjectKind
@@ -35,11 +35,6 @@ internal sealed class SolidKind : ISceneObjectKind
 
     public SceneObject Read(ObjectReader reader, SceneReadContext context)
     {
-        if (_soft && reader.Get("plasticity") is { } plasticity)
-        {
-            throw reader.Error(plasticity, reader.PathOf("plasticity"), "not built yet: a soft body's plasticity arrives with the rest of the issue \"solids from particles\"", showValue: false);
-        }
-
         var spacing = reader.Number("spacing", null, ValueRule.Positive, "m");
         var (positions, rotation, volume) = ReadShape(reader, context, spacing);
         if (reader.Has("mass") && reader.Has("density"))
@@ -66,7 +61,28 @@ internal sealed class SolidKind : ISceneObjectKind
             Friction = reader.Has("friction") ? reader.Number("friction", null, ValueRule.NonNegative, string.Empty) : double.NaN,
             Restitution = reader.Has("restitution") ? reader.Number("restitution", null, ValueRule.Fraction, string.Empty) : double.NaN,
             Stiffness = _soft ? StiffnessOf(reader) : 1.0,
+            Plasticity = _soft ? PlasticityOf(reader) : null,
         };
+    }
+
+    // "plasticity": {"yield" (m, required), "creep" ((0, 1], default 0.5)}.
+    private static (double Yield, double Creep)? PlasticityOf(ObjectReader reader)
+    {
+        var plasticity = reader.Object("plasticity", "a soft body's plasticity");
+        if (plasticity is null)
+        {
+            return null;
+        }
+
+        var yield = plasticity.Number("yield", null, ValueRule.Positive, "m");
+        var creep = plasticity.Number("creep", 0.5, ValueRule.Positive, string.Empty);
+        if (creep > 1.0)
+        {
+            throw plasticity.Error(plasticity.Get("creep")!.Value, plasticity.PathOf("creep"), "must be in (0, 1]: the fraction of what passes the yield taken into the rest shape at each projection");
+        }
+
+        plasticity.Finish();
+        return (yield, creep);
     }
 
     private static bool OnOneLine(Vector3d[] positions)
@@ -193,6 +209,8 @@ internal sealed class SolidKind : ISceneObjectKind
 
         public double Stiffness { get; set; }
 
+        public (double Yield, double Creep)? Plasticity { get; set; }
+
         public override int ParticleCount => _positions.Length;
 
         public override void AddParticles(SceneBuilder builder)
@@ -215,6 +233,11 @@ internal sealed class SolidKind : ISceneObjectKind
 
             var bodies = builder.Bodies;
             var body = _soft ? bodies.AddSoft(particles, Stiffness, _rotation) : bodies.AddRigid(particles, _rotation);
+            if (Plasticity is { } plasticity)
+            {
+                bodies.SetPlasticity(body, plasticity.Yield, plasticity.Creep);
+            }
+
             if (Velocity != Vector3d.Zero || AngularVelocity != Vector3d.Zero)
             {
                 bodies.SetMotion(body, Velocity, AngularVelocity);

@@ -23,6 +23,7 @@ public sealed partial class ShapeMatching
         var q = covariance.Rotation(_orientation[body]);
         _orientation[body] = q;
         var s = _stiffness[body];
+        var plastic = IsPlastic(body);
         var inverseDt = 1.0 / context.Dt;
         for (var k = first; k < end; k++)
         {
@@ -33,7 +34,13 @@ public sealed partial class ShapeMatching
             }
 
             var xi = At(x, i);
-            var move = s * (c + q.Rotate(_rest[k] - restCentre) - xi);
+            var goal = c + q.Rotate(_rest[k] - restCentre);
+            var move = s * (goal - xi);
+            if (plastic)
+            {
+                Yield(body, k, xi, goal, q);
+            }
+
             Put(x, i, xi + move);
             if (kickVelocities)
             {

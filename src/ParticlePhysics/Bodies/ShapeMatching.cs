@@ -25,14 +25,15 @@ namespace ParticlePhysics.Bodies;
 /// <para>
 /// A soft body (<see cref="AddSoft"/>) moves its particles a fraction s (its stiffness, 0 &lt; s &lt;= 1) of the way to
 /// their goals at every projection (once per xpbd substep), as in Müller et al.; s = 1 holds the shape as a rigid
-/// body does, but with plain PBD's prediction.
+/// body does, but with plain PBD's prediction. A plastic one (<see cref="SetPlasticity"/>) takes what is pulled past
+/// the yield into its rest shape.
 /// </para>
 /// <para>
 /// Under a force-based integrator the end of the step is projected the same way, the step taken as one substep: a rigid
 /// body turns by the angular momentum of the end velocities (about the start's offsets, which the straight-line step
 /// has not stretched) and takes the rigid velocity field; a soft body's correction dx also changes its velocity by dx / dt. Two particles of one body do not collide: give the
 /// contact set <see cref="PairFilter"/>. The set keeps each body's orientation, so the world brackets it
-/// (<see cref="IStatefulConstraintSet"/>): a failed step leaves the orientations as they were. Nothing is allocated per
+/// (<see cref="IStatefulConstraintSet"/>): a failed step leaves the orientations (and plastic bodies' rest shapes) as they were. Nothing is allocated per
 /// step. A pinned particle of a body stays where its pin holds it.
 /// </para>
 /// </remarks>
@@ -173,7 +174,11 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
     }
 
     /// <inheritdoc />
-    public void BeginStep() => Array.Copy(_orientation, _saved, _bodies);
+    public void BeginStep()
+    {
+        Array.Copy(_orientation, _saved, _bodies);
+        SaveRestShapes();
+    }
 
     /// <inheritdoc />
     public void CommitStep()
@@ -181,7 +186,11 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
     }
 
     /// <inheritdoc />
-    public void DiscardStep() => Array.Copy(_saved, _orientation, _bodies);
+    public void DiscardStep()
+    {
+        Array.Copy(_saved, _orientation, _bodies);
+        RestoreRestShapes();
+    }
 
     /// <inheritdoc />
     /// <remarks>
@@ -334,6 +343,11 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
             var capacity = Math.Max(entries, 2 * _particles.Length);
             Array.Resize(ref _particles, capacity);
             Array.Resize(ref _rest, capacity);
+            if (_savedRest.Length > 0)
+            {
+                Array.Resize(ref _savedRest, capacity); // a plastic body's rest shapes are bracketed
+            }
+
             Array.Resize(ref _goals, capacity);
         }
     }

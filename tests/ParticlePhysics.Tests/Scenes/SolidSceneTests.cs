@@ -100,6 +100,37 @@ public class SolidSceneTests
         }
     }
 
+    [Fact]
+    public void A_plastic_soft_box_dropped_on_the_ground_keeps_a_dent_where_an_elastic_one_springs_back()
+    {
+        // Two soft boxes of 4 x 4 x 4 particles, 20 cm, thrown down at 4 m/s onto the ground; the second is plastic
+        // (yield 5 mm, creep 0.5). After 2 s the elastic one is back to its size, the plastic one lower.
+        var scene = Scene.Parse("""
+            { "duration": 2, "objects": [
+                { "type": "soft", "box": { "center": [0, 0.2, 0], "size": [0.2, 0.2, 0.2] }, "spacing": 0.05, "stiffness": 0.2, "velocity": [0, -4, 0] },
+                { "type": "soft", "box": { "center": [1, 0.2, 0], "size": [0.2, 0.2, 0.2] }, "spacing": 0.05, "stiffness": 0.2, "velocity": [0, -4, 0],
+                  "plasticity": { "yield": 0.005, "creep": 0.5 } } ],
+              "colliders": [{ "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "friction": 0.5 }] }
+            """);
+        var world = Run(scene);
+        double Height(int first)
+        {
+            double low = double.MaxValue, high = double.MinValue;
+            for (var i = first; i < first + 64; i++)
+            {
+                low = Math.Min(low, world.GetPosition(i).Y);
+                high = Math.Max(high, world.GetPosition(i).Y);
+            }
+
+            return high - low;
+        }
+
+        var (elastic, plastic) = (Height(0), Height(64));
+        _output.WriteLine($"after 2 s: elastic box {elastic:F4} m high, plastic box {plastic:F4} m (0.15 m between outer centres at rest)");
+        Assert.True(Math.Abs(elastic - 0.15) < 0.003, $"the elastic box is {elastic} m high");
+        Assert.True(plastic < 0.14, $"the plastic box is {plastic} m high: no dent");
+    }
+
     private static ParticleWorld Run(Scene scene)
     {
         var world = scene.Build();
