@@ -23,9 +23,9 @@ namespace ParticlePhysics.Contacts;
 /// else its contact point's move u = dx - h V - h r omega x n is undone when |u_t| &lt; mu_s d (d the normal correction,
 /// Macklin et al. 2014's rule) by P = -u_t / K shared between moves and spins (a spin's share as omega += its change /
 /// h), so a grain that rolls keeps its contact point still and one that would slide is held. Between two particles
-/// friction acts in the velocity pass only, as for plain particles: a stick in the projection there (the same rule,
-/// with or without spins) made a pyramid of 204 grains, friction 1, collapse where plain particles stand.
-/// /// Dynamic friction, in the velocity pass: P = -v_t / K with |P| &lt;= mu_k J_n, J_n = (d / h) / (w_a + w_b) the
+/// friction acts in the velocity pass only, as for plain particles: in one sweep, a stick in the projection undoes
+/// the tangential part of the other contacts' normal pushes and spreads a stack outward (the pyramid test).
+/// Dynamic friction, in the velocity pass: P = -v_t / K with |P| &lt;= mu_k J_n, J_n = (d / h) / (w_a + w_b) the
 /// normal impulse of the projection. Rolling resistance, after it: the relative spin across the normal is taken down by
 /// an angular impulse L = -omega_r / (1/I_a + 1/I_b) with |L| &lt;= mu_r R J_n, R = r_a r_b / (r_a + r_b) (r_a on an
 /// obstacle): a torque up to mu_r R times the normal force, the constant-torque model of Ai et al. (2011). So a grain
@@ -128,8 +128,6 @@ public sealed partial class ContactSet
     private Vector3d StickGrain(int i, Vector3d position, Vector3d start, Obstacle obstacle, Vector3d n, double depth, double w, double r, double h)
     {
         var k = SpinShare(i, w, r);
-        var u = position - start - (h * obstacle.Velocity) - (h * r * Vector3d.Cross(_spin[i], n));
-        var ut = u - (Vector3d.Dot(u, n) * n);
         var muS = 0.5 * (_staticFriction[i] + obstacle.Friction);
         var move = position - start - (h * obstacle.Velocity);
         var tangential = move - (Vector3d.Dot(move, n) * n);
@@ -138,6 +136,10 @@ public sealed partial class ContactSet
             StopRolling(i, k, n);
             return position - tangential;
         }
+
+        // The contact point's move: the centre's less the spin's, h r omega x n.
+        var u = move - (h * r * Vector3d.Cross(_spin[i], n));
+        var ut = u - (Vector3d.Dot(u, n) * n);
 
         if (!(ut.Length < muS * depth) || w == 0.0)
         {
