@@ -77,6 +77,18 @@ internal sealed class SceneBuilder
     /// <summary>The rigid and soft bodies, made on first use.</summary>
     public ShapeMatching Bodies => _bodies ??= new ShapeMatching(World);
 
+    /// <summary>Adds a solid's particles, each of <paramref name="mass"/> and <paramref name="radius"/>; returns the first one's index.</summary>
+    public int AddSpheres(Vector3d[] positions, double mass, double radius)
+    {
+        var first = World.Count;
+        foreach (var p in positions)
+        {
+            World.SetRadius(World.AddParticle(p, mass), radius);
+        }
+
+        return first;
+    }
+
     /// <summary>
     /// Notes the particles of a solid (a body, a granular material): they collide with every particle of a radius even
     /// without <c>particleCollisions</c>, with their own friction and restitution (NaN: none of their own).

@@ -87,15 +87,7 @@ internal sealed class GranularKind : ISceneObjectKind
 
         public override int ParticleCount => _positions.Length;
 
-        public override void AddParticles(SceneBuilder builder)
-        {
-            var world = builder.World;
-            _first = world.Count;
-            foreach (var p in _positions)
-            {
-                world.SetRadius(world.AddParticle(p, _mass), _radius);
-            }
-        }
+        public override void AddParticles(SceneBuilder builder) => _first = builder.AddSpheres(_positions, _mass, _radius);
 
         public override void AddElements(SceneBuilder builder)
         {
