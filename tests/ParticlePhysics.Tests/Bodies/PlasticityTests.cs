@@ -23,7 +23,7 @@ public class PlasticityTests
         var (elastic, elasticBodies) = SquashedBox(yield: 0.5);
         var (plastic, plasticBodies) = SquashedBox(yield: 0.01);
         var rest = elasticBodies.RestShapeOf(0).ToArray();
-        var p0 = Momentum(plastic);
+        var p0 = ShapeMatchingTests.Momentum(plastic);
         var xpbd = new Xpbd(10);
         for (var s = 0; s < 120; s++)
         {
@@ -31,7 +31,7 @@ public class PlasticityTests
             plastic.Step(xpbd, 1.0 / 60);
         }
 
-        var (elasticHeight, plasticHeight) = (Height(elastic), Height(plastic));
+        var (elasticHeight, plasticHeight) = (ShapeMatchingTests.Height(elastic), ShapeMatchingTests.Height(plastic));
         _output.WriteLine($"after 2 s: elastic {elasticHeight:F4} m high, plastic (yield 1 cm, creep 0.5) {plasticHeight:F4} m; plastic shape error {RigidBodyTests.ShapeError(plastic, plasticBodies):E2} m");
 
         // Within the yield (every particle nearer its goal than 0.5 m): the rest shape keeps its bits and the box its size.
@@ -43,7 +43,7 @@ public class PlasticityTests
         Assert.True(RigidBodyTests.ShapeError(plastic, plasticBodies) < 1e-9);
         // The goals' mass-weighted mean is the centre of mass whatever the rest shape, so the projection keeps the
         // momentum; the rest shape rounded anew at each of the 1,200 projections leaves 4e-11 of it.
-        Assert.True((Momentum(plastic) - p0).Length < 1e-9 * p0.Length, $"momentum moved from {p0} to {Momentum(plastic)}");
+        Assert.True((ShapeMatchingTests.Momentum(plastic) - p0).Length < 1e-9 * p0.Length, $"momentum moved from {p0} to {ShapeMatchingTests.Momentum(plastic)}");
     }
 
     [Fact]
@@ -114,28 +114,5 @@ public class PlasticityTests
         }
 
         return (world, bodies);
-    }
-
-    private static Vector3d Momentum(ParticleWorld world)
-    {
-        var p = Vector3d.Zero;
-        for (var i = 0; i < world.Count; i++)
-        {
-            p += world.GetMass(i) * world.GetVelocity(i);
-        }
-
-        return p;
-    }
-
-    private static double Height(ParticleWorld world)
-    {
-        double low = double.MaxValue, high = double.MinValue;
-        for (var i = 0; i < world.Count; i++)
-        {
-            low = Math.Min(low, world.GetPosition(i).Y);
-            high = Math.Max(high, world.GetPosition(i).Y);
-        }
-
-        return high - low;
     }
 }

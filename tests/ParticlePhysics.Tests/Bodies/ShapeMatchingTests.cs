@@ -192,7 +192,7 @@ public class ShapeMatchingTests
         Assert.Equal(expected.AngularVelocity, actual.AngularVelocity);
     }
 
-    private static Vector3d Momentum(ParticleWorld world)
+    internal static Vector3d Momentum(ParticleWorld world)
     {
         var p = Vector3d.Zero;
         for (var i = 0; i < world.Count; i++)
@@ -203,7 +203,7 @@ public class ShapeMatchingTests
         return p;
     }
 
-    private static double Height(ParticleWorld world)
+    internal static double Height(ParticleWorld world)
     {
         double low = double.MaxValue, high = double.MinValue;
         for (var i = 0; i < world.Count; i++)
