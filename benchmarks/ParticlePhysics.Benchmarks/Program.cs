@@ -81,6 +81,11 @@ internal static class Program
             return XpbdComparison.Run(args[1..]);
         }
 
+        if (args.Length > 0 && args[0] == "sleep")
+        {
+            return SleepingPile.Run(args[1..]);
+        }
+
         if (args.Length > 0 && args[0] == "bodies")
         {
             return BodiesComparison.Run(args[1..]);

@@ -93,6 +93,27 @@ public readonly ref struct ConstraintContext
         ReadOnlySpan<double> radii,
         IParallelRunner? runner,
         bool kickDrift)
+        : this(time, dt, startPositions, startVelocities, positions, velocities, masses, inverseMasses, radii, runner, kickDrift, sleeping: null)
+    {
+    }
+
+    /// <summary>
+    /// A context with the world's sleeping (<see cref="ISleepingParticles"/>): its sleeping particles have inverse mass 0
+    /// in <paramref name="inverseMasses"/>, and a set may wake them through <paramref name="sleeping"/>.
+    /// </summary>
+    public ConstraintContext(
+        double time,
+        double dt,
+        ReadOnlySpan<double> startPositions,
+        ReadOnlySpan<double> startVelocities,
+        Span<double> positions,
+        Span<double> velocities,
+        ReadOnlySpan<double> masses,
+        ReadOnlySpan<double> inverseMasses,
+        ReadOnlySpan<double> radii,
+        IParallelRunner? runner,
+        bool kickDrift,
+        ISleepingParticles? sleeping)
     {
         var n = 3 * masses.Length;
         if (startPositions.Length != n || startVelocities.Length != n || positions.Length != n || velocities.Length != n
@@ -113,7 +134,11 @@ public readonly ref struct ConstraintContext
         Masses = masses;
         InverseMasses = inverseMasses;
         Radii = radii;
+        Sleeping = sleeping;
     }
+
+    /// <summary>The world's sleeping, or null when no particle can sleep (then no inverse mass is 0 for sleep).</summary>
+    public ISleepingParticles? Sleeping { get; }
 
     /// <summary>The time at the start of the interval, in seconds.</summary>
     public double Time { get; }

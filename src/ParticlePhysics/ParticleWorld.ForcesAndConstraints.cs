@@ -39,6 +39,7 @@ public sealed partial class ParticleWorld
         }
 
         _forceGenerators.Add(generator);
+        WakeAll();
         _unprojectedStale = true;
         _structureVersion++;
     }
@@ -52,6 +53,7 @@ public sealed partial class ParticleWorld
             return false;
         }
 
+        WakeAll();
         _ = _finiteDifference.Remove(generator);
         _linearized.Clear(); // a later product must not reach a removed generator; the next Linearize rebuilds it
         _linearizedSource.Clear();
@@ -72,6 +74,7 @@ public sealed partial class ParticleWorld
         }
 
         _constraintSets.Add(constraints);
+        WakeAll();
         if (constraints is IConstraintForces forces)
         {
             _constraintForces.Add(forces);
@@ -93,6 +96,7 @@ public sealed partial class ParticleWorld
             return false;
         }
 
+        WakeAll();
         if (constraints is IConstraintForces forces)
         {
             _ = _constraintForces.Remove(forces);

@@ -106,7 +106,7 @@ public sealed partial class ParticleWorld : IPositionBasedSystem
     {
         Guard.PositiveFinite(dt, nameof(dt));
         return new ConstraintContext(
-            time, dt, startPositions, startVelocities, positions, velocities, Masses, InverseMasses, Radii, Runner);
+            time, dt, startPositions, startVelocities, positions, velocities, Masses, InverseMasses, Radii, Runner, kickDrift: false, SleepingForContext(_sleepActive));
     }
 
     /// <summary>The generators that no constraint set projects (<see cref="IForceProjection"/>), in their order.</summary>

@@ -8,6 +8,7 @@ namespace ParticlePhysics;
 public sealed partial class ParticleWorld
 {
     private bool _stepping;
+    private bool _sleepActive; // this step may wake and put to sleep (BeginSleep)
     private int _frameDepth; // open FixedTimestepDriver frames: their steps leave the constraint sets' bracket to them
 
     /// <summary>
@@ -61,6 +62,7 @@ public sealed partial class ParticleWorld
             BeginProfile();
         }
 
+        _sleepActive = BeginSleep(integrator is IPositionBasedIntegrator);
         _stepping = true;
         try
         {
@@ -77,6 +79,10 @@ public sealed partial class ParticleWorld
             (_state, _next) = (_next, _state);
             _time += dt;
             committed = true;
+            if (_sleepActive)
+            {
+                UpdateSleep(dt);
+            }
         }
         finally
         {
@@ -90,7 +96,11 @@ public sealed partial class ParticleWorld
             else
             {
                 stateful?.DiscardStep();
+                UndoWakes();
             }
+
+            _recordWakes = false;
+            _sleepActive = false;
 
             if (bracket)
             {
@@ -118,6 +128,7 @@ public sealed partial class ParticleWorld
         if (_frameDepth++ == 0)
         {
             BeginConstraintSets();
+            SaveSleep();
         }
     }
 
@@ -127,6 +138,10 @@ public sealed partial class ParticleWorld
         if (--_frameDepth == 0)
         {
             EndConstraintSets(committed);
+            if (!committed)
+            {
+                RestoreSleep();
+            }
         }
     }
 

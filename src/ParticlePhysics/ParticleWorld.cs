@@ -188,6 +188,10 @@ public sealed partial class ParticleWorld
         _inverseMasses[index] = 1.0 / mass;
         _pinned[index] = false;
         _radii[index] = 0.0;
+        _asleep[index] = false;
+        _calm[index] = 0.0;
+        _moving[index] = false;
+        _fresh[index] = true; // new: its velocity may wake what it meets
         return index;
     }
 
@@ -204,6 +208,8 @@ public sealed partial class ParticleWorld
         ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Finite(position, nameof(position));
+        WakeIsland(index);
+        _fresh[index] = true;
         WritePosition(index, position);
     }
 
@@ -224,6 +230,8 @@ public sealed partial class ParticleWorld
         ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Finite(velocity, nameof(velocity));
+        WakeIsland(index);
+        _fresh[index] = true;
         WriteVelocity(index, velocity);
     }
 
@@ -305,6 +313,7 @@ public sealed partial class ParticleWorld
         ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Mass(mass, nameof(mass));
+        WakeIsland(index);
         _masses[index] = mass;
         _inverseMasses[index] = _pinned[index] ? 0.0 : 1.0 / mass;
     }
@@ -326,6 +335,7 @@ public sealed partial class ParticleWorld
         ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.NonNegativeFinite(radius, nameof(radius));
+        WakeIsland(index);
         _radii[index] = radius;
     }
 
@@ -352,6 +362,7 @@ public sealed partial class ParticleWorld
         ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
         Guard.Finite(velocity, nameof(velocity));
+        WakeIsland(index);
         _pinned[index] = true;
         _inverseMasses[index] = 0.0;
         WriteVelocity(index, velocity);
@@ -365,6 +376,7 @@ public sealed partial class ParticleWorld
     {
         ThrowIfStepping();
         Guard.ParticleIndex(index, _count, nameof(index));
+        WakeIsland(index);
         _pinned[index] = false;
         _inverseMasses[index] = 1.0 / _masses[index];
     }
@@ -392,6 +404,7 @@ public sealed partial class ParticleWorld
         }
 
         Compact();
+        WakeAll();
         state.CopyTo(_state);
     }
 
@@ -499,6 +512,7 @@ public sealed partial class ParticleWorld
         Array.Resize(ref _pinned, capacity);
         Array.Resize(ref _radii, capacity);
         Array.Resize(ref _forces, 3 * capacity);
+        ResizeSleep(capacity);
         _capacity = capacity;
     }
 }

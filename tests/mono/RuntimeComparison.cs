@@ -120,6 +120,57 @@ namespace ParticlePhysics.RuntimeComparison
             hash.Add(heap.Positions.ToArray());
             hash.Add(heap.Velocities.ToArray());
             Print("bodies/heap", hash);
+            Sleeping();
+        }
+
+        // Sleeping (issue "solids from particles"): a heap of boxes and grains that falls asleep, then a ball that
+        // wakes part of it; the islands, the wake in the substep of the impact, and what sleeps at the end.
+        private static void Sleeping()
+        {
+            var world = new ParticleWorld();
+            world.SleepSpeed = 0.05;
+            var bodies = new ShapeMatching(world);
+            for (var b = 0; b < 3; b++)
+            {
+                AddBox(world, bodies, new Vector3d(0.35 * b, 0.15, 0), new Vector3d(0.3, 0.2, 0.2), new Rotation3d(0, 0.1 * b, 0, 1), b == 1 ? 0.3 : 0.0);
+            }
+
+            var firstGrain = world.Count;
+            for (var i = 0; i < 200; i++)
+            {
+                var p = world.AddParticle(new Vector3d(0.4 + (0.021 * (i % 5)) + (0.001 * (i % 3)), 0.011 + (0.021 * (i / 25)), 0.3 + (0.021 * ((i / 5) % 5))), 0.004);
+                world.SetRadius(p, 0.01);
+            }
+
+            world.AddForce(Gravity.Down(9.81));
+            var contacts = new ContactSet();
+            contacts.ParticleCollisions = true;
+            contacts.ParticleFriction = 0.4;
+            contacts.PairFilter = bodies.PairFilter;
+            contacts.SetGranular(firstGrain, 200, 0.6, 0.3);
+            contacts.Add(PlaneObstacle.Ground(0, 0.8));
+            world.AddConstraints(bodies);
+            world.AddConstraints(contacts);
+            var xpbd = new Xpbd(10);
+            for (var step = 0; step < 240; step++)
+            {
+                world.Step(xpbd, 1.0 / 60);
+            }
+
+            var asleep = world.SleepingCount;
+            var ball = world.AddParticle(new Vector3d(0.0, 0.6, 0.0), new Vector3d(0, -3, 0), 2.0);
+            world.SetRadius(ball, 0.05);
+            for (var step = 0; step < 60; step++)
+            {
+                world.Step(xpbd, 1.0 / 60);
+            }
+
+            var hash = new BitHash();
+            hash.Add(world.Positions.ToArray());
+            hash.Add(world.Velocities.ToArray());
+            hash.Add(world.InverseMasses.ToArray());
+            Print("bodies/sleeping", hash);
+            Console.WriteLine("count bodies/sleeping " + asleep + " " + world.SleepingCount);
         }
 
         private static void AddBox(ParticleWorld world, ShapeMatching bodies, Vector3d centre, Vector3d size, Rotation3d rotation, double softness)

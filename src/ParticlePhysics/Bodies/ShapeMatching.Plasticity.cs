@@ -58,6 +58,7 @@ public sealed partial class ShapeMatching
         _yield[body] = yield;
         _creep[body] = creep;
         _anyPlastic = true;
+        _revision++;
     }
 
     /// <summary>Body <paramref name="body"/>'s yield, m (infinite for a body that is not plastic), and creep.</summary>

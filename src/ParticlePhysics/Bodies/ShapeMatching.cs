@@ -37,9 +37,10 @@ namespace ParticlePhysics.Bodies;
 /// step. A pinned particle of a body stays where its pin holds it.
 /// </para>
 /// </remarks>
-public sealed partial class ShapeMatching : IStatefulConstraintSet
+public sealed partial class ShapeMatching : IStatefulConstraintSet, IParticleLinks
 {
     private readonly ParticleWorld _world;
+    private int _revision; // bumped by a new body or new plasticity: sleeping islands wake (IParticleLinks)
     private int _bodies;
     private int _entries;
     private int[] _start = { 0 };
@@ -201,6 +202,11 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
     {
         for (var b = 0; b < _bodies; b++)
         {
+            if (Sleeps(b, in context))
+            {
+                continue;
+            }
+
             if (_rigid[b])
             {
                 ProjectRigid(b, context, fromVelocities: true);
@@ -217,6 +223,11 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
     {
         for (var b = 0; b < _bodies; b++)
         {
+            if (Sleeps(b, in context))
+            {
+                continue;
+            }
+
             if (_rigid[b])
             {
                 ProjectRigid(b, context);
@@ -234,12 +245,33 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
     {
         for (var b = 0; b < _bodies; b++)
         {
-            if (_rigid[b])
+            if (_rigid[b] && !Sleeps(b, in context))
             {
                 SolveRigidVelocities(b, context);
             }
         }
     }
+
+    /// <inheritdoc />
+    public int Revision => _revision;
+
+    /// <inheritdoc />
+    /// <remarks>Each body's particles are one island: a body sleeps and wakes whole.</remarks>
+    public void AddLinks(ParticleIslands islands)
+    {
+        Guard.NotNull(islands, nameof(islands));
+        for (var b = 0; b < _bodies; b++)
+        {
+            for (var k = _start[b] + 1; k < _start[b + 1]; k++)
+            {
+                islands.Link(_particles[_start[b]], _particles[k]);
+            }
+        }
+    }
+
+    // A body sleeps whole (its particles are one island), so its first particle tells; a sleeping body costs nothing.
+    private bool Sleeps(int body, in ConstraintContext context) =>
+        context.Sleeping is { } sleeping && sleeping.IsAsleep(_particles[_start[body]]);
 
     private int Add(ReadOnlySpan<int> given, double stiffness, bool rigid, Rotation3d rotation)
     {
@@ -321,6 +353,7 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet
 
         _entries += particles.Length;
         _bodies++;
+        _revision++;
         return b;
     }
 

@@ -71,6 +71,7 @@ public sealed partial class ContactSet
         _staticFriction.AsSpan(first, count).Fill(staticFriction);
         _spin.AsSpan(first, count).Clear();
         _anyGrains = true;
+        _revision++;
     }
 
     /// <summary>Whether particle <paramref name="particle"/> is a grain (<see cref="SetGranular"/>).</summary>

@@ -47,6 +47,7 @@ public sealed partial class ContactSet
 
         _ownFriction.AsSpan(first, count).Fill(friction);
         _ownRestitution.AsSpan(first, count).Fill(restitution);
+        _revision++;
     }
 
     /// <summary>

@@ -62,7 +62,7 @@ public sealed partial class ContactSet
         if (ParticleCollisions)
         {
             var swept = MarkFastParticles(n, x, previous, radii);
-            var pairs = FindRestingPairs(n, x, previous, radii, swept);
+            var pairs = FindRestingPairs(n, x, previous, radii, swept, StillParticles(in context));
             _log.CandidatePairs = pairs;
             var first = _restingGrid.First.ForReading();
             var second = _restingGrid.Second.ForReading();
@@ -70,6 +70,16 @@ public sealed partial class ContactSet
             {
                 var a = first[p];
                 var b = second[p];
+                if (context.Sleeping is { } sleeping)
+                {
+                    if (inverseMasses[a] == 0.0 && inverseMasses[b] == 0.0 && sleeping.IsAsleep(a) && sleeping.IsAsleep(b))
+                    {
+                        continue; // two sleeping particles: nothing to wake, nothing to move
+                    }
+
+                    WakeOnImpact(in context, sleeping, a, b, radii, swept && (_boxes.Fast[a] || _boxes.Fast[b]));
+                }
+
                 var depth = swept && (_boxes.Fast[a] || _boxes.Fast[b])
                     ? SeparateSweptPositions(in context, a, b, radii, out var normal)
                     : SeparatePositions(in context, a, b, radii, out normal);
@@ -85,9 +95,10 @@ public sealed partial class ContactSet
             return;
         }
 
+        var wakers = AnyObstacleMoves() ? context.Sleeping : null;
         for (var i = 0; i < n; i++)
         {
-            if (inverseMasses[i] == 0.0)
+            if (inverseMasses[i] == 0.0 && !(wakers is not null && WokenByMovingObstacle(in context, wakers, i, Radius(radii, i), end)))
             {
                 continue;
             }
@@ -439,7 +450,7 @@ public sealed partial class ContactSet
     /// <paramref name="swept"/>, a particle marked fast has a box over its whole straight move from
     /// <paramref name="previous"/> (a slow one moved less than its radius, which the quarter radius more covers).
     /// </summary>
-    private int FindRestingPairs(int n, Span<double> x, Span<double> previous, Span<double> radii, bool swept)
+    private int FindRestingPairs(int n, Span<double> x, Span<double> previous, Span<double> radii, bool swept, bool[]? still)
     {
         var min = _boxes.Min;
         var max = _boxes.Max;
@@ -457,7 +468,7 @@ public sealed partial class ContactSet
         }
 
         var started = BroadPhaseStart();
-        if (!_restingGrid.TryFindPairs(min, max, n, BroadPhaseFilter(), _maxCandidatePairs))
+        if (!_restingGrid.TryFindPairs(min, max, n, BroadPhaseFilter(), _maxCandidatePairs, still))
         {
             RefuseCandidatePairs(n);
         }

@@ -35,7 +35,7 @@ namespace ParticlePhysics.Contacts;
 /// A step allocates nothing once the buffers have grown to the particle and pair counts.
 /// </para>
 /// </remarks>
-public sealed partial class ContactSet : IStatefulConstraintSet
+public sealed partial class ContactSet : IStatefulConstraintSet, IParticleLinks
 {
     /// <summary>The most impacts <see cref="Impacts"/> keeps per step (<see cref="ImpactCount"/> counts them all).</summary>
     public const int MaxRecordedImpacts = 4096;
@@ -80,6 +80,9 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     // Per particle, a fact about the last obstacle it was found far outside of (Obstacle.IsFarOutside): phi at a point
     // of that obstacle's own frame is at least the gap. A fact about the shape's geometry, true whichever particle or
     // step wrote it, so it needs no invalidation; the slot only keeps one near where it is asked.
+    private bool _particleCollisions;
+    private int _revision; // bumped by a change that may move a particle at rest: sleeping islands wake (IParticleLinks)
+
     private Obstacle?[] _farObstacles = Array.Empty<Obstacle?>();
     private Vector3d[] _farPoints = Array.Empty<Vector3d>();
     private double[] _farGaps = Array.Empty<double>();
@@ -88,7 +91,15 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     public IReadOnlyList<Obstacle> Obstacles => _obstacles;
 
     /// <summary>True to make particles collide with each other (off by default: obstacles only).</summary>
-    public bool ParticleCollisions { get; set; }
+    public bool ParticleCollisions
+    {
+        get => _particleCollisions;
+        set
+        {
+            _revision += _particleCollisions != value ? 1 : 0;
+            _particleCollisions = value;
+        }
+    }
 
     /// <summary>Which particle pairs may collide (null: all of them), for instance <see cref="ExcludedPairs"/>.</summary>
     public IContactPairFilter? PairFilter { get; set; }
@@ -112,6 +123,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
         {
             Guard.NonNegativeFinite(value, nameof(ParticleFriction));
             _particleFriction = value;
+            _revision++;
         }
     }
 
@@ -242,6 +254,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
 
         _obstacles.Add(obstacle);
         _reactions.Clear(_obstacles.Count);
+        _revision++;
     }
 
     /// <summary>Removes an obstacle; returns false when it was not in the set. The indices of those after it shift down.</summary>
@@ -250,6 +263,7 @@ public sealed partial class ContactSet : IStatefulConstraintSet
     {
         var removed = _obstacles.Remove(obstacle);
         _reactions.Clear(_obstacles.Count);
+        _revision += removed ? 1 : 0;
         return removed;
     }
 

@@ -103,7 +103,15 @@ public sealed class SpatialHashGrid
     /// The same with a limit of at most <see cref="MaxPairs"/> pairs: false, with the pairs found so far, once more
     /// would have to be listed (the list never grows past the limit).
     /// </summary>
-    internal bool TryFindPairs(ReadOnlySpan<double> min, ReadOnlySpan<double> max, int count, IContactPairFilter? filter, int limit)
+    internal bool TryFindPairs(ReadOnlySpan<double> min, ReadOnlySpan<double> max, int count, IContactPairFilter? filter, int limit) =>
+        TryFindPairs(min, max, count, filter, limit, null);
+
+    /// <summary>
+    /// The same, where <paramref name="still"/> (if not null) marks boxes that need no pair with each other (sleeping
+    /// particles): a still box is not visited, and each box that is visits all 26 neighbouring cells for still boxes
+    /// (the 13 of the forward half for the others, as before), so the work follows the boxes that move.
+    /// </summary>
+    internal bool TryFindPairs(ReadOnlySpan<double> min, ReadOnlySpan<double> max, int count, IContactPairFilter? filter, int limit, bool[]? still)
     {
         if (count < 0 || min.Length < 3 * count || max.Length < 3 * count)
         {
@@ -125,11 +133,21 @@ public sealed class SpatialHashGrid
             }
 
             var i = _boxOf[slot];
-            UnpackCell(_slotCell[slot], out var cx, out var cy, out var cz);
-            for (var offset = 0; offset < 14; offset++)
+            if (still is not null && still[i])
             {
-                // Its own cell (later boxes only), then the 13 neighbours of the forward half (each pair of cells once).
-                long x = cx + _offsets[3 * offset], y = cy + _offsets[(3 * offset) + 1], z = cz + _offsets[(3 * offset) + 2];
+                continue; // its pairs with moving boxes are found from them
+            }
+
+            UnpackCell(_slotCell[slot], out var cx, out var cy, out var cz);
+            var offsets = still is null ? 14 : 27;
+            for (var offset = 0; offset < offsets; offset++)
+            {
+                // Its own cell (later boxes only, and still ones), then the 13 neighbours of the forward half (each
+                // pair of cells once), then with still boxes the 13 of the backward half for those alone.
+                var forward = offset < 14;
+                var sign = forward ? 1 : -1;
+                var k = forward ? offset : offset - 13;
+                long x = cx + (sign * _offsets[3 * k]), y = cy + (sign * _offsets[(3 * k) + 1]), z = cz + (sign * _offsets[(3 * k) + 2]);
                 var cell = PackCell(x, y, z);
                 var bucket = _buckets.Of(x, y, z, cell);
                 if (bucket < 0)
@@ -140,7 +158,8 @@ public sealed class SpatialHashGrid
                 for (var q = _bucketStart[bucket]; q < _bucketStart[bucket + 1]; q++)
                 {
                     var j = _boxOf[q];
-                    if ((offset > 0 || j > i) && _slotCell[q] == cell && Overlap(slot, q)
+                    var jStill = still is not null && still[j];
+                    if ((forward ? offset > 0 || j > i || jStill : jStill) && _slotCell[q] == cell && Overlap(slot, q)
                         && !Emit(Math.Min(i, j), Math.Max(i, j), filter))
                     {
                         return false;
@@ -156,7 +175,7 @@ public sealed class SpatialHashGrid
             for (var j = 0; j < count; j++)
             {
                 // Against every ordinary box, and against the large boxes after it (each such pair once).
-                if (j != i && (_slotOf[j] < _ordinaryCount || j > i) && Overlap(slot, _slotOf[j])
+                if (j != i && (_slotOf[j] < _ordinaryCount || j > i) && !(still is not null && still[i] && still[j]) && Overlap(slot, _slotOf[j])
                     && !Emit(Math.Min(i, j), Math.Max(i, j), filter))
                 {
                     return false;

@@ -8,12 +8,13 @@ namespace ParticlePhysics.Forces;
 /// Uniform gravity: F_i = m_i g on every particle, with g = (0, -9.81, 0) m/s^2 by default (y up).
 /// Potential energy: U = -sum m_i g . x_i. Its Jacobian is zero: implicit integrators treat it exactly.
 /// </summary>
-public sealed class Gravity : IForceGenerator, IPotentialEnergy, IForceJacobian, IUniformJacobianProduct
+public sealed class Gravity : IParticleLinks, IForceGenerator, IPotentialEnergy, IForceJacobian, IUniformJacobianProduct
 {
     /// <summary>Standard gravity, 9.81 m/s^2, as the course uses it.</summary>
     public const double StandardAcceleration = 9.81;
 
     private Vector3d _acceleration;
+    private int _revision;
 
     /// <summary>Gravity of <see cref="StandardAcceleration"/> pointing down (-y).</summary>
     public Gravity()
@@ -43,7 +44,17 @@ public sealed class Gravity : IForceGenerator, IPotentialEnergy, IForceJacobian,
         {
             Guard.Finite(value, nameof(Acceleration));
             _acceleration = value;
+            _revision++;
         }
+    }
+
+    /// <inheritdoc />
+    public int Revision => _revision;
+
+    /// <inheritdoc />
+    /// <remarks>Gravity acts on each particle alone: it links none.</remarks>
+    public void AddLinks(ParticleIslands islands)
+    {
     }
 
     /// <inheritdoc />

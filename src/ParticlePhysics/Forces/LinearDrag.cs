@@ -10,11 +10,12 @@ namespace ParticlePhysics.Forces;
 /// set. With gravity alone it gives the free fall of characteristic time tau = m / lambda.
 /// Jacobian: df_i/dv_i = -lambda I (linear, so implicit Euler is exact backward Euler for it).
 /// </summary>
-public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian, IUniformJacobianProduct
+public sealed class LinearDrag : IParticleLinks, IForceGenerator, IBoundForce, IForceJacobian, IUniformJacobianProduct
 {
     private readonly int[]? _particles;
     private readonly ParticleWorld? _system;
     private double _coefficient;
+    private int _revision;
     private double _linearized;
     private LinearizationStamp _stamp;
 
@@ -46,6 +47,15 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian, I
         _particles = list.ToArray();
     }
 
+    /// <inheritdoc />
+    public int Revision => _revision;
+
+    /// <inheritdoc />
+    /// <remarks>Drag acts on each particle alone: it links none.</remarks>
+    public void AddLinks(ParticleIslands islands)
+    {
+    }
+
     /// <summary>lambda, in N s/m; can be changed between steps (a finite number &gt;= 0).</summary>
     public double Coefficient
     {
@@ -55,6 +65,7 @@ public sealed class LinearDrag : IForceGenerator, IBoundForce, IForceJacobian, I
             _system?.ThrowIfStepping(); // a drag on named particles knows its world; one on every particle does not
             Guard.NonNegativeFinite(value, nameof(Coefficient));
             _coefficient = value;
+            _revision++;
         }
     }
 
