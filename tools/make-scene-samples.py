@@ -286,6 +286,7 @@ def bodies():
         "integrator": {"name": "xpbd", "substeps": 10},
         "dt": 1 / 60,
         "duration": 8,
+        "sleep": {"speed": 0.05},
         "objects": objects,
         "colliders": [
             {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "friction": 0.5},
@@ -318,5 +319,5 @@ dump("samples/scenes/cloth-fold.json", [
 dump("samples/scenes/bodies.json", [
     "Eleven boxes, eight rigid and three soft (shape matching of stiffness 0.6), and a rigid boulder filled from",
     "boulder.obj, dropped into a tank, then a column of 540 grains of sand (friction 0.8, rolling friction 0.3) poured",
-    "over them: they land on each other, tumble and settle, and the sand runs into the gaps and piles against a wall.",
-    "Written by tools/make-scene-samples.py."], bodies())
+    "over them: they land on each other, tumble and settle, and the sand runs into the gaps and piles against a wall;",
+    "what stays below 5 cm/s for half a second falls asleep. Written by tools/make-scene-samples.py."], bodies())

@@ -126,6 +126,10 @@ public sealed class Scene
                 ? "particle collisions: off (but solids collide with every particle with a radius)"
                 : "particle collisions: off");
         text.AppendLine(Invariant($"gravity: [{s.Gravity.X:R}, {s.Gravity.Y:R}, {s.Gravity.Z:R}] m/s^2, drag: {s.Drag:R} N s/m"));
+        if (s.SleepSpeed > 0)
+        {
+            text.AppendLine(Invariant($"sleep: below {s.SleepSpeed:R} m/s for {s.SleepTime:R} s"));
+        }
         if (s.Air is { } air)
         {
             var gust = air.Gust is { } g ? Invariant($", a gust of {g.WaveCount} wave{(g.WaveCount == 1 ? string.Empty : "s")}") : string.Empty;
@@ -140,7 +144,7 @@ public sealed class Scene
 
     private ParticleWorld Build(out Dictionary<string, int> counts)
     {
-        var world = new ParticleWorld(ParticleCount);
+        var world = new ParticleWorld(ParticleCount) { SleepSpeed = Settings.SleepSpeed, SleepTime = Settings.SleepTime };
         var builder = new SceneBuilder(world, File, Settings);
         try
         {
@@ -242,6 +246,7 @@ public sealed class Scene
         ReadIntegrator(reader, settings);
         ReadParticleCollisions(reader, settings);
         ReadAir(reader, settings);
+        ReadSleep(reader, settings);
 
         return settings;
     }
@@ -290,6 +295,22 @@ public sealed class Scene
         }
 
         settings.Integrator = nameAt.String;
+    }
+
+    private static void ReadSleep(ObjectReader reader, SceneSettings settings)
+    {
+        if (reader.Object("sleep", "sleeping") is not { } sleep)
+        {
+            return;
+        }
+
+        settings.SleepSpeed = sleep.Number("speed", null, ValueRule.Positive, "m/s");
+        settings.SleepTime = sleep.Number("time", ParticleWorld.DefaultSleepTime, ValueRule.Positive, "s");
+        sleep.Finish();
+        if (!IntegratorCatalog.IsPositionBased(settings.Integrator))
+        {
+            throw reader.Error(reader.Get("sleep")!.Value, "sleep", $"needs xpbd: the integrator is {settings.Integrator}, under which nothing sleeps");
+        }
     }
 
     private static void ReadAir(ObjectReader reader, SceneSettings settings)

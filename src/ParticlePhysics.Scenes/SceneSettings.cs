@@ -24,6 +24,12 @@ public sealed class SceneSettings
     /// <summary>Linear drag lambda on every particle, N s/m (F = -lambda v; default 0).</summary>
     public double Drag { get; internal set; }
 
+    /// <summary>The speed below which what stays still falls asleep (<see cref="ParticleWorld.SleepSpeed"/>), m/s; 0 (the default): never.</summary>
+    public double SleepSpeed { get; internal set; }
+
+    /// <summary>How long it must stay below <see cref="SleepSpeed"/>, s (default 0.5).</summary>
+    public double SleepTime { get; internal set; } = ParticleWorld.DefaultSleepTime;
+
     /// <summary>The integrator's name in <see cref="IntegratorCatalog"/> (default xpbd).</summary>
     public string Integrator { get; internal set; } = DefaultIntegrator;
 

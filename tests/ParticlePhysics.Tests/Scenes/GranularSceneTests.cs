@@ -37,6 +37,30 @@ public class GranularSceneTests
         Assert.Contains("particle collisions: off (but solids collide with every particle with a radius)", description, StringComparison.Ordinal);
     }
 
+    [Fact]
+    public void A_scene_with_sleep_puts_a_grain_at_rest_to_sleep_after_the_time_it_gives()
+    {
+        var scene = Scene.Parse("""
+            { "sleep": { "speed": 0.05, "time": 0.25 },
+              "objects": [{ "type": "granular", "box": { "min": [0, 0, 0], "max": [0.1, 0.1, 0.1] }, "spacing": 0.1 }],
+              "colliders": [{ "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0] }] }
+            """);
+        var world = scene.Build();
+        Assert.Equal(0.05, world.SleepSpeed);
+        Assert.Equal(0.25, world.SleepTime);
+        Assert.Contains("sleep: below 0.05 m/s for 0.25 s", scene.Describe(), StringComparison.Ordinal);
+        var xpbd = new Xpbd(10);
+        var steps = 0;
+        while (world.SleepingCount == 0 && steps < 60)
+        {
+            world.Step(xpbd, 1.0 / 60);
+            steps++;
+        }
+
+        // It rests on the ground from the start, so it is calm from the first step and sleeps after 0.25 s of steps.
+        Assert.InRange(steps, 15, 17);
+    }
+
     [Theory]
     [InlineData(0.0)]
     [InlineData(0.1)]
