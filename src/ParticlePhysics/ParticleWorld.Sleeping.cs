@@ -327,7 +327,7 @@ public sealed partial class ParticleWorld
             return;
         }
 
-        (_frameSleep ??= new SleepSnapshot()).Save(_asleep, _calm, _sleepNext, _count, _sleepingCount, _linkRevision);
+        (_frameSleep ??= new SleepSnapshot()).Save(_asleep, _calm, _sleepNext, _moving, _fresh, _count, _sleepingCount, _linkRevision);
     }
 
     /// <summary>After a failed frame (whose rewind woke everything): the sleep of the frame's start.</summary>
@@ -338,7 +338,7 @@ public sealed partial class ParticleWorld
             return;
         }
 
-        _sleepingCount = saved.Restore(_asleep, _calm, _sleepNext, out _linkRevision);
+        _sleepingCount = saved.Restore(_asleep, _calm, _sleepNext, _moving, _fresh, out _linkRevision);
         for (var i = 0; i < _count; i++)
         {
             if (_asleep[i])
@@ -379,6 +379,8 @@ public sealed partial class ParticleWorld
         private bool[] _asleep = Array.Empty<bool>();
         private double[] _calm = Array.Empty<double>();
         private int[] _next = Array.Empty<int>();
+        private bool[] _moving = Array.Empty<bool>();
+        private bool[] _fresh = Array.Empty<bool>();
         private int _sleeping;
         private int _revision;
 
@@ -388,29 +390,35 @@ public sealed partial class ParticleWorld
 
         public void Clear() => Saved = false;
 
-        public void Save(bool[] asleep, double[] calm, int[] next, int count, int sleeping, int revision)
+        public void Save(bool[] asleep, double[] calm, int[] next, bool[] moving, bool[] fresh, int count, int sleeping, int revision)
         {
             if (_asleep.Length < count)
             {
                 _asleep = new bool[count];
                 _calm = new double[count];
                 _next = new int[count];
+                _moving = new bool[count];
+                _fresh = new bool[count];
             }
 
             Array.Copy(asleep, _asleep, count);
             Array.Copy(calm, _calm, count);
             Array.Copy(next, _next, count);
+            Array.Copy(moving, _moving, count);
+            Array.Copy(fresh, _fresh, count);
             Count = count;
             _sleeping = sleeping;
             _revision = revision;
             Saved = true;
         }
 
-        public int Restore(bool[] asleep, double[] calm, int[] next, out int revision)
+        public int Restore(bool[] asleep, double[] calm, int[] next, bool[] moving, bool[] fresh, out int revision)
         {
             Array.Copy(_asleep, asleep, Count);
             Array.Copy(_calm, calm, Count);
             Array.Copy(_next, next, Count);
+            Array.Copy(_moving, moving, Count);
+            Array.Copy(_fresh, fresh, Count);
             revision = _revision;
             return _sleeping;
         }

@@ -129,7 +129,7 @@ public sealed partial class ParticleWorld
     /// <summary>The masses, one per particle (a pinned particle keeps its mass; it is its inverse that is 0).</summary>
     public ReadOnlySpan<double> Masses => _masses.AsSpan(0, _count);
 
-    /// <summary>The inverse masses, one per particle: 1 / m, or 0 for a pinned particle.</summary>
+    /// <summary>The inverse masses, one per particle: 1 / m, or 0 for a pinned or a sleeping particle (<see cref="SleepSpeed"/>).</summary>
     public ReadOnlySpan<double> InverseMasses => _inverseMasses.AsSpan(0, _count);
 
     /// <summary>

@@ -50,6 +50,7 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet, IParticleLin
     private Quaternion4d[] _saved = Array.Empty<Quaternion4d>();
     private Quaternion4d[] _predicted = Array.Empty<Quaternion4d>();
     private Vector3d[] _momentum = Array.Empty<Vector3d>();
+    private bool[] _slept = Array.Empty<bool>(); // asleep at this substep's projection: no momentum of its own to take velocities from
     private int[] _particles = Array.Empty<int>();
     private Vector3d[] _rest = Array.Empty<Vector3d>();
     private Vector3d[] _goals = Array.Empty<Vector3d>();
@@ -221,9 +222,16 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet, IParticleLin
     /// <inheritdoc />
     public void Project(in ConstraintContext context)
     {
+        if (_slept.Length < _bodies)
+        {
+            _slept = new bool[_stiffness.Length];
+        }
+
         for (var b = 0; b < _bodies; b++)
         {
-            if (Sleeps(b, in context))
+            // A body woken later in this substep (by the contact stage) takes its velocities from its moves alone.
+            _slept[b] = Sleeps(b, in context);
+            if (_slept[b])
             {
                 continue;
             }
@@ -245,7 +253,7 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet, IParticleLin
     {
         for (var b = 0; b < _bodies; b++)
         {
-            if (_rigid[b] && !Sleeps(b, in context))
+            if (_rigid[b] && !(b < _slept.Length && _slept[b]))
             {
                 SolveRigidVelocities(b, context);
             }

@@ -285,6 +285,46 @@ public class SleepingTests
     }
 
     [Fact]
+    public void A_world_after_a_failed_frame_steps_on_bit_for_bit_as_one_that_never_tried_it()
+    {
+        ParticleWorld Make(bool fail)
+        {
+            var (world, _, _) = BoxOnGround();
+            var xpbd = new Xpbd(10);
+            var driver = new FixedTimestepDriver(world, xpbd, Dt);
+            for (var frame = 0; frame < 40; frame++)
+            {
+                driver.Advance(Dt); // calm from the start: the box falls asleep after 31 steps
+            }
+
+            Assert.Equal(world.Count, world.SleepingCount);
+            // A pinned ball driven at 60 m/s into the box, beyond the divergence limit: the frame fails after waking it.
+            world.DivergenceLimit = 50;
+            var ball = world.AddParticle(new Vector3d(0.05, 0.3, 0.05), 1.0);
+            world.SetRadius(ball, 0.05);
+            driver = new FixedTimestepDriver(world, xpbd, Dt);
+            if (fail)
+            {
+                world.Pin(ball, new Vector3d(0, -60, 0));
+                Assert.Throws<SimulationDivergedException>(() => driver.Advance(Dt));
+            }
+
+            world.Pin(ball, new Vector3d(0, -0.5, 0));
+            for (var frame = 0; frame < 60; frame++)
+            {
+                driver.Advance(Dt);
+            }
+
+            return world;
+        }
+
+        var failed = Make(fail: true);
+        var clean = Make(fail: false);
+        Assert.Equal(clean.State.ToArray(), failed.State.ToArray());
+        Assert.Equal(clean.SleepingCount, failed.SleepingCount);
+    }
+
+    [Fact]
     public void A_sleeping_pile_keeps_the_same_bits_on_one_core_or_two()
     {
         var one = Pile(null);
