@@ -3,7 +3,7 @@ using System;
 namespace ParticlePhysics;
 
 /// <summary>
-/// The islands of the world's sleeping: the sets of particles that touch or are tied together, found by union-find
+/// The islands of the world's sleeping: the sets of particles that are tied together (a body), found by union-find
 /// (union by size, path halving) over the links the generators and constraint sets add. Links to a pinned particle
 /// are ignored: a pinned particle is ground, and two piles resting on the same pinned particle are two islands.
 /// </summary>

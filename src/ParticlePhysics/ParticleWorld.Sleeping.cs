@@ -2,7 +2,7 @@ using System;
 
 namespace ParticlePhysics;
 
-// Sleeping: islands of particles that stay slow stop moving and stop costing their integration and projection until
+// Sleeping: particles and bodies that stay slow stop moving and stop costing their pairs and projections until
 // something meets them, moves them or changes a force (docs/architecture.md, "Sleeping").
 public sealed partial class ParticleWorld
 {
@@ -33,13 +33,13 @@ public sealed partial class ParticleWorld
     /// step); 0 (the default) turns sleeping off.
     /// </summary>
     /// <remarks>
-    /// An island (particles that touch or are tied by a body, with pinned particles and colliders as ground) whose
-    /// particles all stay below this speed for <see cref="SleepTime"/> falls asleep at the end of a step: its
-    /// velocities become 0 and its particles stop moving, as if pinned, until it is woken. A contact at a relative
-    /// speed above this one wakes the island in the same substep, before the contact is projected, so the impact meets
-    /// the island's own masses; so do a collider moving into it, <see cref="Wake"/>, and anything that changes a
-    /// particle (its position, velocity, mass, radius or pin), the world's state, its forces or constraint sets, or a
-    /// generator's or set's parameters (<see cref="IParticleLinks.Revision"/>). Sleeping works with xpbd, and only
+    /// An island (a particle alone, or the particles a body ties together) whose particles all stay below this speed
+    /// for <see cref="SleepTime"/> falls asleep at the end of a step: its velocities become 0 and its particles stop
+    /// moving, as if pinned, until it is woken. A particle that moved faster than this in its last step and touches it,
+    /// or one just woken, added or set that meets it faster, wakes the island in the same substep, before the contact
+    /// is projected, so the impact meets the island's own masses; so do a collider moving into it, <see cref="Wake"/>,
+    /// and anything that changes a particle (its position, velocity, mass, radius or pin), the world's state, its forces
+    /// or constraint sets, or a generator's or set's parameters (<see cref="IParticleLinks.Revision"/>). Sleeping works with xpbd, and only
     /// while every force generator and constraint set of the world implements <see cref="IParticleLinks"/> (gravity,
     /// linear drag, contact sets and shape matching do); otherwise every particle stays awake. Islands are found in
     /// index order on one thread, so sleeping keeps a run's bits the same on one core or many.
@@ -169,7 +169,7 @@ public sealed partial class ParticleWorld
         _recordWakes = false;
     }
 
-    /// <summary>The sum of the generators' and sets' revisions; false if one of them cannot tell its links.</summary>
+    /// <summary>A hash of the generators' and sets' count and revisions; false if one of them cannot tell its links.</summary>
     private bool LinkRevision(out int revision)
     {
         revision = _forceGenerators.Count + (31 * _constraintSets.Count);
@@ -245,14 +245,14 @@ public sealed partial class ParticleWorld
             _calm[i] = _moving[i] ? 0.0 : _calm[i] + dt;
         }
 
-        // An island sleeps when it has an awake particle and none has been calm for less than the sleep time.
+        // An island sleeps when it has an awake particle (its least calm time is then finite) and none has been calm
+        // for less than the sleep time.
         for (var i = 0; i < n; i++)
         {
             if (!_pinned[i] && !_asleep[i])
             {
                 var root = _islands.Find(i);
                 _islandCalm[root] = Math.Min(_islandCalm[root], _calm[i]);
-                _islandHead[root] = 0;
             }
         }
 
@@ -264,16 +264,16 @@ public sealed partial class ParticleWorld
             }
 
             var root = _islands.Find(i);
-            if (_islandHead[root] == -1 || !(_islandCalm[root] >= _sleepTime))
+            var calm = _islandCalm[root];
+            if (double.IsPositiveInfinity(calm) || !(calm >= _sleepTime))
             {
                 continue;
             }
 
-            // Chained in index order into the island's ring (head and tail kept at the root; head 0 marked "awake
-            // particles, no ring yet", so the ring's head is stored one up).
-            if (_islandHead[root] == 0)
+            // Chained in index order into the island's ring, its head and tail kept at the root.
+            if (_islandHead[root] < 0)
             {
-                _islandHead[root] = i + 1;
+                _islandHead[root] = i;
             }
             else
             {
@@ -295,9 +295,9 @@ public sealed partial class ParticleWorld
 
         for (var i = 0; i < n; i++)
         {
-            if (!_pinned[i] && _islandHead[i] > 0)
+            if (!_pinned[i] && _islandHead[i] >= 0)
             {
-                _sleepNext[_islandTail[i]] = _islandHead[i] - 1;
+                _sleepNext[_islandTail[i]] = _islandHead[i];
             }
         }
     }

@@ -203,11 +203,6 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet, IParticleLin
     {
         for (var b = 0; b < _bodies; b++)
         {
-            if (Sleeps(b, in context))
-            {
-                continue;
-            }
-
             if (_rigid[b])
             {
                 ProjectRigid(b, context, fromVelocities: true);

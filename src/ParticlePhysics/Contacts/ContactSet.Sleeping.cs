@@ -4,8 +4,9 @@ using ParticlePhysics.Numerics;
 namespace ParticlePhysics.Contacts;
 
 /// <summary>
-/// The contact set and the world's sleeping (<see cref="ParticleWorld.SleepSpeed"/>): touching particles are one
-/// island, and a particle or a moving obstacle that meets a sleeping particle wakes it before the contact is projected.
+/// The contact set and the world's sleeping (<see cref="ParticleWorld.SleepSpeed"/>): a moving particle or obstacle
+/// that meets a sleeping particle wakes it before the contact is projected, and the broad phase lists no pair of two
+/// sleeping particles.
 /// </summary>
 public sealed partial class ContactSet
 {

@@ -72,11 +72,6 @@ public sealed partial class ContactSet
                 var b = second[p];
                 if (context.Sleeping is { } sleeping)
                 {
-                    if (inverseMasses[a] == 0.0 && inverseMasses[b] == 0.0 && sleeping.IsAsleep(a) && sleeping.IsAsleep(b))
-                    {
-                        continue; // two sleeping particles: nothing to wake, nothing to move
-                    }
-
                     WakeOnImpact(in context, sleeping, a, b, radii, swept && (_boxes.Fast[a] || _boxes.Fast[b]));
                 }
 
