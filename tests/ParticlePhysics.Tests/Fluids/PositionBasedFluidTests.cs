@@ -1,0 +1,171 @@
+using System;
+using ParticlePhysics.Fluids;
+using Xunit;
+
+namespace ParticlePhysics.Tests.Fluids;
+
+/// <summary>
+/// The density projection of <see cref="PositionBasedFluid"/>: the rest lattice is at the rest density, a compressed
+/// block is pushed back towards it, and every projection and velocity pass keeps the momentum of its particles.
+/// </summary>
+public class PositionBasedFluidTests
+{
+    private const double Spacing = 0.01;
+
+    [Fact]
+    public void A_block_at_rest_on_its_lattice_is_not_moved_by_its_density_constraints()
+    {
+        var (world, fluid) = Block(Spacing);
+        var before = world.Positions.ToArray();
+        Substep(world, fluid, 1.0 / 600, velocities: false);
+
+        // The interior is at rho_0 (kappa), the faces below it: nothing is compressed, so nothing moves beyond rounding.
+        var after = world.Positions.ToArray();
+        for (var k = 0; k < before.Length; k++)
+        {
+            Assert.Equal(before[k], after[k], 14);
+        }
+
+        Assert.True(fluid.PairCount > 13 * world.Count / 2, $"{fluid.PairCount} neighbour pairs for {world.Count} particles");
+    }
+
+    [Fact]
+    public void A_compressed_block_is_pushed_back_towards_the_rest_density_and_keeps_its_momentum_exactly()
+    {
+        var (world, fluid) = Block(0.8 * Spacing, spacing: Spacing);
+        var momentum = Momentum(world);
+        var start = MaxDensityError(world, fluid);
+        for (var iteration = 0; iteration < 20; iteration++)
+        {
+            Substep(world, fluid, 1.0 / 600);
+        }
+
+        var end = MaxDensityError(world, fluid);
+        Assert.True(start > 0.5, $"the block at 0.8 s starts {start:P1} compressed");
+        Assert.True(end < 0.3 * start, $"the largest compression went from {start:P1} to {end:P1}");
+        var moved = Momentum(world);
+        Assert.Equal(momentum.X, moved.X, 12);
+        Assert.Equal(momentum.Y, moved.Y, 12);
+        Assert.Equal(momentum.Z, moved.Z, 12);
+    }
+
+    [Fact]
+    public void Xsph_viscosity_keeps_the_momentum_and_evens_out_the_velocities()
+    {
+        var (world, fluid) = Block(Spacing);
+        fluid.Viscosity = 0.5;
+        var random = new Random(3);
+        for (var i = 0; i < world.Count; i++)
+        {
+            world.SetVelocity(i, new Vector3d(random.NextDouble() - 0.5, random.NextDouble() - 0.5, random.NextDouble() - 0.5));
+        }
+
+        var momentum = world.TotalMomentum();
+        var energy = world.KineticEnergy();
+        Substep(world, fluid, 1.0 / 60);
+        var after = world.TotalMomentum();
+        Assert.Equal(momentum.X, after.X, 12);
+        Assert.Equal(momentum.Y, after.Y, 12);
+        Assert.Equal(momentum.Z, after.Z, 12);
+        Assert.True(world.KineticEnergy() < 0.8 * energy, $"kinetic energy {energy:G4} J became {world.KineticEnergy():G4} J");
+    }
+
+    [Fact]
+    public void Bad_parameters_are_refused_with_their_value()
+    {
+        var world = new ParticleWorld();
+        Assert.Throws<ArgumentOutOfRangeException>(() => new PositionBasedFluid(world, 0.0, 1000));
+        Assert.Throws<ArgumentOutOfRangeException>(() => new PositionBasedFluid(world, 0.01, -1));
+        var fluid = new PositionBasedFluid(world, 0.01, 1000);
+        var error = Assert.Throws<ArgumentOutOfRangeException>(() => fluid.Viscosity = 1.5);
+        Assert.Contains("1.5", error.Message);
+        Assert.Throws<ArgumentOutOfRangeException>(() => fluid.Relaxation = -1);
+        Assert.Throws<ArgumentOutOfRangeException>(() => fluid.Iterations = 0);
+        var p = world.AddParticle(Vector3d.Zero, 1e-3);
+        fluid.Add(new[] { p });
+        Assert.Throws<ArgumentException>(() => fluid.Add(new[] { p }));
+        Assert.Throws<ArgumentOutOfRangeException>(() => fluid.Add(new[] { 7 }));
+        var q = world.AddParticle(new Vector3d(1, 0, 0), 1e-3);
+        Assert.Contains($"particle {q} is listed twice", Assert.Throws<ArgumentException>(() => fluid.Add(new[] { q, q })).Message);
+        Assert.False(fluid.IsFluid(q));
+        fluid.Add(new[] { q });
+        Assert.True(fluid.IsFluid(q));
+        Assert.Equal(2, fluid.Count);
+    }
+
+    // A 6 x 6 x 6 block at pitch `pitch` of particles of the fluid of spacing `spacing` (mass rho_0 s^3).
+    private static (ParticleWorld World, PositionBasedFluid Fluid) Block(double pitch, double? spacing = null)
+    {
+        var world = new ParticleWorld();
+        var fluid = new PositionBasedFluid(world, spacing ?? pitch, 1000);
+        var indices = new int[216];
+        for (var k = 0; k < indices.Length; k++)
+        {
+            indices[k] = world.AddParticle(new Vector3d(pitch * (k % 6), pitch * (k / 6 % 6), pitch * (k / 36)), fluid.ParticleMass);
+        }
+
+        fluid.Add(indices);
+        return (world, fluid);
+    }
+
+    private static Vector3d Momentum(ParticleWorld world)
+    {
+        var sum = Vector3d.Zero;
+        for (var i = 0; i < world.Count; i++)
+        {
+            sum += world.GetMass(i) * world.GetPosition(i);
+        }
+
+        return sum;
+    }
+
+    // The largest rho / rho_0 - 1 by the fluid's own estimate, through one more projection with relaxation so large that it moves nothing.
+    private static double MaxDensityError(ParticleWorld world, PositionBasedFluid fluid)
+    {
+        var max = 0.0;
+        var kernel = new SphKernel(fluid.SmoothingRadius);
+        var rest = 0.0;
+        for (int z = -2; z <= 2; z++)
+        {
+            for (int y = -2; y <= 2; y++)
+            {
+                for (int x = -2; x <= 2; x++)
+                {
+                    rest += kernel.Density(fluid.Spacing * fluid.Spacing * ((x * x) + (y * y) + (z * z)));
+                }
+            }
+        }
+
+        for (var i = 0; i < world.Count; i++)
+        {
+            var sum = 0.0;
+            for (var j = 0; j < world.Count; j++)
+            {
+                sum += kernel.Density((world.GetPosition(i) - world.GetPosition(j)).LengthSquared);
+            }
+
+            max = Math.Max(max, (sum / rest) - 1.0);
+        }
+
+        return max;
+    }
+
+    // One substep of the set alone on the world's state (its projection, then its velocity pass if asked), written back.
+    private static void Substep(ParticleWorld world, PositionBasedFluid fluid, double dt, bool velocities = true)
+    {
+        var n = 3 * world.Count;
+        var state = new double[2 * n];
+        world.Positions.CopyTo(state);
+        world.Velocities.CopyTo(state.AsSpan(n));
+        var start = (double[])state.Clone();
+        var context = new ConstraintContext(
+            0.0, dt, start.AsSpan(0, n), start.AsSpan(n), state.AsSpan(0, n), state.AsSpan(n), world.Masses, world.InverseMasses, world.Radii);
+        fluid.Project(in context);
+        if (velocities)
+        {
+            fluid.SolveVelocities(in context);
+        }
+
+        world.SetState(state);
+    }
+}
