@@ -145,6 +145,42 @@ internal static class Guard
         }
     }
 
+    /// <summary>
+    /// Refuses a list of particles that names one twice, in O(n log n) on a sorted copy (a body or a fluid lists
+    /// thousands: comparing every pair would cost millions of steps), naming the particle and both places.
+    /// </summary>
+    public static void NoDuplicateParticles(ReadOnlySpan<int> particles, string name)
+    {
+        if (particles.Length < 2)
+        {
+            return;
+        }
+
+        var sorted = particles.ToArray();
+        Array.Sort(sorted);
+        for (var k = 1; k < sorted.Length; k++)
+        {
+            if (sorted[k] == sorted[k - 1])
+            {
+                var listed = particles.ForReading();
+                var particle = sorted[k];
+                var first = 0;
+                while (listed[first] != particle)
+                {
+                    first++;
+                }
+
+                var second = first + 1;
+                while (listed[second] != particle)
+                {
+                    second++;
+                }
+
+                throw new ArgumentException($"Particle {particle} is listed twice (at {first} and {second}).", name);
+            }
+        }
+    }
+
     public static void NotNull(object? value, string name)
     {
         if (value is null)

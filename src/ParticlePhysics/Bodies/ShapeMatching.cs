@@ -302,15 +302,9 @@ public sealed partial class ShapeMatching : IStatefulConstraintSet, IParticleLin
             {
                 throw new ArgumentException($"Particle {i} already belongs to body {_bodyOf[i]}: a particle belongs to one body at most.", nameof(particles));
             }
-
-            for (var j = 0; j < k; j++)
-            {
-                if (particles[j] == i)
-                {
-                    throw new ArgumentException($"Particle {i} is listed twice (at {j} and {k}).", nameof(particles));
-                }
-            }
         }
+
+        Guard.NoDuplicateParticles(particles, nameof(particles));
 
         // The rest offsets in the body's frame, from the centre of mass now.
         var x = _world.Positions.ForReading();

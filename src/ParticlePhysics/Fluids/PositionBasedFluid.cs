@@ -125,8 +125,8 @@ public sealed partial class PositionBasedFluid : IConstraintSet
     }
 
     /// <summary>
-    /// The artificial pressure k of s_corr = -k (W(r) / W(0.2 h))^4, as a density error (dimensionless, default 0: not yet tuned against the dam break; 0.1 blows a 30-layer column apart): a
-    /// short-range repulsion that keeps particles from clumping.
+    /// The artificial pressure k of s_corr = -k (W(r) / W(0.2 h))^4, as a density error (dimensionless): a
+    /// short-range repulsion that keeps particles from clumping. Off by default until it is tuned against the dam break.
     /// </summary>
     /// <exception cref="ArgumentOutOfRangeException">The value is negative or not finite.</exception>
     public double ArtificialPressure
@@ -211,32 +211,8 @@ public sealed partial class PositionBasedFluid : IConstraintSet
             }
         }
 
-        // Growing the buffers changes nothing a caller sees, so it may come before the last check; the duplicates are
-        // found by marking each index in the map (-2) and unmarked whatever the outcome.
+        Guard.NoDuplicateParticles(particles, nameof(particles));
         Reserve(_count + indices.Length, count);
-        var duplicate = -1;
-        var marked = 0;
-        for (; marked < indices.Length && duplicate < 0; marked++)
-        {
-            if (_localOf[indices[marked]] == -2)
-            {
-                duplicate = indices[marked];
-                break;
-            }
-
-            _localOf[indices[marked]] = -2;
-        }
-
-        for (var k = 0; k < marked; k++)
-        {
-            _localOf[indices[k]] = -1;
-        }
-
-        if (duplicate >= 0)
-        {
-            throw new ArgumentException($"particle {duplicate} is listed twice.", nameof(particles));
-        }
-
         for (var k = 0; k < indices.Length; k++)
         {
             _localOf[indices[k]] = _count;
@@ -274,8 +250,7 @@ public sealed partial class PositionBasedFluid : IConstraintSet
     }
 
     /// <summary>Whether world particle <paramref name="particle"/> is in the fluid.</summary>
-    public bool IsFluid(int particle) => (uint)particle < (uint)_localOf.Length && _localOf[particle] >= 0 && _localOf[particle] < _count
-        && _particles[_localOf[particle]] == particle;
+    public bool IsFluid(int particle) => (uint)particle < (uint)_localOf.Length && _localOf[particle] >= 0;
 
     /// <inheritdoc />
     public void Project(in ConstraintContext context)

@@ -86,7 +86,7 @@ public class PositionBasedFluidTests
         Assert.Throws<ArgumentException>(() => fluid.Add(new[] { p }));
         Assert.Throws<ArgumentOutOfRangeException>(() => fluid.Add(new[] { 7 }));
         var q = world.AddParticle(new Vector3d(1, 0, 0), 1e-3);
-        Assert.Contains($"particle {q} is listed twice", Assert.Throws<ArgumentException>(() => fluid.Add(new[] { q, q })).Message);
+        Assert.Contains($"Particle {q} is listed twice (at 0 and 1)", Assert.Throws<ArgumentException>(() => fluid.Add(new[] { q, q })).Message);
         Assert.False(fluid.IsFluid(q));
         fluid.Add(new[] { q });
         Assert.True(fluid.IsFluid(q));
@@ -119,7 +119,7 @@ public class PositionBasedFluidTests
         return sum;
     }
 
-    // The largest rho / rho_0 - 1 by the fluid's own estimate, through one more projection with relaxation so large that it moves nothing.
+    // The largest rho / rho_0 - 1, summed over every pair with poly6 and normalised by the rest lattice's sum (the fluid's kappa), apart from the set.
     private static double MaxDensityError(ParticleWorld world, PositionBasedFluid fluid)
     {
         var max = 0.0;
