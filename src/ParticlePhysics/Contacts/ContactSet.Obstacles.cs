@@ -43,6 +43,8 @@ public sealed partial class ContactSet
     }
 
     /// <summary>The filter of a particle: its own, or the default.</summary>
+    internal CollisionFilter FilterOf(int particle) => ParticleFilter(particle);
+
     private CollisionFilter ParticleFilter(int particle) =>
         particle < _particleFilters.Length ? _particleFilters[particle] : CollisionFilter.Default;
 

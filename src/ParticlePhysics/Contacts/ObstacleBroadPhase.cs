@@ -44,7 +44,7 @@ internal sealed class ObstacleBroadPhase
     public int Count => _count;
 
     /// <summary>The obstacles' boxes swept over the times [<paramref name="from"/>, <paramref name="to"/>].</summary>
-    public void Update(List<Obstacle> obstacles, double from, double to)
+    public void Update(IReadOnlyList<Obstacle> obstacles, double from, double to)
     {
         var count = obstacles.Count;
         if (_isBounded.Length < count)

@@ -70,6 +70,7 @@ public sealed partial class PositionBasedFluid
             _gradient[(3 * j) + 2] -= mi * gz;
         }
 
+        SumWalls();
         for (var k = 0; k < _count; k++)
         {
             _density[k] *= _kappa;
@@ -128,6 +129,7 @@ public sealed partial class PositionBasedFluid
             _move[(3 * j) + 2] -= wj * gz;
         }
 
+        MoveByWalls();
         for (var k = 0; k < 3 * _count; k++)
         {
             _x[k] += _move[k];

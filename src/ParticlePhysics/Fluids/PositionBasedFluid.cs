@@ -9,20 +9,20 @@ namespace ParticlePhysics.Fluids;
 /// <summary>
 /// A liquid made of particles, held at its rest density by position-based fluids (Macklin and Müller, "Position Based
 /// Fluids", 2013): one density constraint C_i = rho_i / rho_0 - 1 per particle, projected in every xpbd substep, with
-/// the artificial pressure against clumping, XSPH viscosity and vorticity confinement on the velocities.
+/// the artificial pressure against clumping, XSPH viscosity and vorticity confinement on the velocities, and walls that
+/// count in the density (<see cref="Boundary"/>).
 /// </summary>
 /// <remarks>
 /// <para>
 /// The fluid is filled on a cubic lattice of spacing s (<see cref="AddBox"/>): each particle has mass rho_0 s^3 and
 /// radius s / 2 (what colliders and other particles meet), and the smoothing radius is h = 2 s (26 neighbours at
-/// rest). The density is rho_i = kappa sum_j m_j W(x_i - x_j) with poly6 (<see cref="SphKernel"/>), and kappa is
-/// fixed so that the rest lattice is exactly at rho_0: poly6's sum over a lattice at h = 2 s is 1.0098 / s^3, not
-/// 1 / s^3, and without kappa a column would start 1 % compressed and swell.
+/// rest). The density is rho_i = kappa sum_j m_j W(x_i - x_j) with spiky (<see cref="SphKernel"/>, which says why one
+/// kernel serves densities and gradients), and kappa is fixed so that the rest lattice is exactly at rho_0: spiky's
+/// sum over a lattice at h = 2 s is 1.236 / s^3, not 1 / s^3, and without kappa a block would start 24 % compressed.
 /// </para>
 /// <para>
 /// The constraint is one-sided, C_i = max(rho_i / rho_0 - 1, 0): a particle with too few neighbours (at the free
-/// surface, in a splash) is not pulled towards others. Its gradients use spiky (<see cref="SphKernel"/>), and for
-/// particles of any masses the projection of every constraint moves particle a by
+/// surface, in a splash) is not pulled towards others. For particles of any masses the projection of every constraint moves particle a by
 /// dx_a = w_a (kappa / rho_0) sum_b (lambda_a m_b + lambda_b m_a + s_corr (m_a + m_b) / 2) grad_a W_ab,
 /// lambda_a = -C_a / (sum_k w_k |grad_k C_a|^2 + epsilon D_0), the pair's weight symmetric so that each pair's
 /// moves m_a dx_a + m_b dx_b sum to 0: the projection keeps the momentum. For equal masses this is the paper's
@@ -33,9 +33,11 @@ namespace ParticlePhysics.Fluids;
 /// </para>
 /// <para>
 /// Walls, bodies and cloth meet the fluid through the contact stage (a <see cref="ContactSet"/> added after this set),
-/// by the particles' radii; pinned fluid particles count in the density and do not move, so they make walls too. Give
+/// by the particles' radii; the obstacles of the contact set given as <see cref="Boundary"/> also count in the density,
+/// so that the fluid is not drawn into them. Pinned fluid particles count in the density and do not move, so they
+/// make walls too. Give
 /// the contact set <see cref="PairFilter"/>, so that two fluid particles leave each other to this set. Neighbours are
-/// found once per substep by the contact stage's grid (<see cref="SpatialHashGrid"/>); nothing is allocated per step
+/// found once per substep in cells of side h, in the contact stage's cell table (<see cref="CellBuckets"/>); nothing is allocated per step
 /// once the buffers have grown to the fluid. Under a force-based integrator the end of the step is projected once, and
 /// each correction dx changes its particle's velocity by dx / dt.
 /// </para>
@@ -46,7 +48,7 @@ public sealed partial class PositionBasedFluid : IConstraintSet
     public const double SmoothingRatio = 2.0;
 
     /// <summary>The default <see cref="Relaxation"/>.</summary>
-    public const double DefaultRelaxation = 0.01;
+    public const double DefaultRelaxation = 2.0;
 
     /// <summary>The default <see cref="ArtificialPressure"/> k.</summary>
     public const double DefaultArtificialPressure = 0.0;
@@ -84,8 +86,9 @@ public sealed partial class PositionBasedFluid : IConstraintSet
         ParticleMass = restDensity * spacing * spacing * spacing;
         Guard.PositiveWithFiniteInverse(ParticleMass, nameof(restDensity), "kg (the particle mass rho_0 s^3)");
         (_kappa, _restDenominator) = RestLattice(_kernel, spacing, restDensity, ParticleMass);
-        _pressurePeak = _kernel.Density(0.04 * _kernel.Radius * _kernel.Radius);
+        _pressurePeak = _kernel.Density(0.2 * _kernel.Radius);
         PairFilter = new FluidPairFilter(this);
+        _wall = new FluidWall(_kernel, spacing, ParticleMass);
     }
 
     /// <summary>The spacing s of the rest lattice, m.</summary>
@@ -110,8 +113,10 @@ public sealed partial class PositionBasedFluid : IConstraintSet
     public FluidPairFilter PairFilter { get; }
 
     /// <summary>
-    /// The relaxation epsilon of lambda's denominator, as a fraction of a rest particle's (dimensionless, default 0.01):
-    /// larger is softer and steadier where a particle has few neighbours.
+    /// The relaxation epsilon of lambda's denominator, as a fraction of a rest particle's (dimensionless, default 2):
+    /// the projection's largest step on the rest lattice is 2.82 / (1 + epsilon) times what makes that pattern's
+    /// density exact (<see cref="SphKernel"/>), and above 2 it would overshoot and grow; at 2 it is 0.94. Smaller is
+    /// stiffer per substep and rings; larger is softer (more substeps make it stiff again).
     /// </summary>
     /// <exception cref="ArgumentOutOfRangeException">The value is negative or not finite.</exception>
     public double Relaxation
@@ -291,8 +296,9 @@ public sealed partial class PositionBasedFluid : IConstraintSet
                 for (var x = -reach; x <= reach; x++)
                 {
                     var r2 = spacing * spacing * ((x * x) + (y * y) + (z * z));
-                    sum += kernel.Density(r2);
-                    var g = kernel.GradientOverDistance(Math.Sqrt(r2));
+                    var r = Math.Sqrt(r2);
+                    sum += kernel.Density(r);
+                    var g = kernel.GradientOverDistance(r);
                     squares += g * g * r2;
                 }
             }

@@ -4,60 +4,64 @@ using System.Runtime.CompilerServices;
 namespace ParticlePhysics.Fluids;
 
 /// <summary>
-/// The two smoothing kernels of position-based fluids (Müller, Charypar and Gross 2003; Macklin and Müller 2013) for a
-/// smoothing radius h: poly6 for densities, W(r) = 315 / (64 pi h^9) (h^2 - r^2)^3, and the gradient of spiky for
-/// the constraint gradients, grad W(r) = -45 / (pi h^6) (h - r)^2 r / |r|, both 0 from r = h on.
+/// The smoothing kernel of the fluid for a smoothing radius h: spiky (Müller, Charypar and Gross 2003),
+/// W(r) = 15 / (pi h^6) (h - r)^3, 0 from r = h on, and its exact gradient grad W = -45 / (pi h^6) (h - r)^2 r / |r|.
 /// </summary>
 /// <remarks>
-/// Each integrates to 1 over its ball (poly6: 4 pi int_0^h r^2 (h^2 - r^2)^3 dr = 64 pi h^9 / 315; spiky,
-/// 15 / (pi h^6) (h - r)^3: 4 pi int_0^h r^2 (h - r)^3 dr = pi h^6 / 15). Spiky's gradient does not vanish as r goes
-/// to 0, unlike poly6's, so two particles pushed together keep being pushed apart. Only + - * / are used.
+/// <para>
+/// W integrates to 1 over its ball (4 pi int_0^h r^2 (h - r)^3 dr = pi h^6 / 15), and its gradient does not vanish as
+/// r goes to 0, so two particles pushed together keep being pushed apart (poly6's does, and lets particles clump).
+/// </para>
+/// <para>
+/// Macklin and Müller take densities with poly6 and gradients with spiky. The projection then moves particles along a
+/// gradient that is not the density's, and some patterns of displacement grow at every projection: on the rest lattice
+/// at h = 2 s, a Jacobi projection scales the displacement wave of wavevector k by 1 - mu(k) with
+/// mu(k) = G_W(k) . G_grad(k) / sum_b |grad W_b|^2, G(k) = sum_b grad W_b sin(k . x_b), and with the two kernels mu
+/// goes down to -0.026 (at k s = (pi, pi, pi / 2)): the fluid boils, the more so the more substeps. With one kernel
+/// for both, mu(k) = |G(k)|^2 / sum_b |grad W_b|^2 &gt;= 0 for every k, at most 2.82 for spiky (hence the default
+/// relaxation, <see cref="PositionBasedFluid.Relaxation"/>). Only + - * / and sqrt are used.
+/// </para>
 /// </remarks>
 public readonly struct SphKernel
 {
-    private readonly double _h2;
-    private readonly double _poly6;
     private readonly double _spiky;
 
-    /// <summary>The kernels of smoothing radius <paramref name="radius"/> (m).</summary>
-    /// <exception cref="ArgumentOutOfRangeException">The radius is not positive and finite, or its kernels are not finite.</exception>
+    /// <summary>The kernel of smoothing radius <paramref name="radius"/> (m).</summary>
+    /// <exception cref="ArgumentOutOfRangeException">The radius is not positive and finite, or its kernel is not finite.</exception>
     public SphKernel(double radius)
     {
         Guard.PositiveFinite(radius, nameof(radius));
         Radius = radius;
-        _h2 = radius * radius;
-        var h3 = _h2 * radius;
-        var h6 = h3 * h3;
-        _poly6 = 315.0 / (64.0 * Math.PI * h6 * h3);
-        _spiky = 45.0 / (Math.PI * h6);
-        if (double.IsInfinity(_poly6) || double.IsInfinity(_spiky) || _poly6 == 0.0)
+        var h3 = radius * radius * radius;
+        _spiky = 15.0 / (Math.PI * h3 * h3);
+        if (double.IsInfinity(_spiky) || _spiky == 0.0 || double.IsInfinity(_spiky * h3))
         {
-            throw new ArgumentOutOfRangeException(nameof(radius), radius, $"a smoothing radius of {Guard.Format(radius)} m gives kernels that are not finite.");
+            throw new ArgumentOutOfRangeException(nameof(radius), radius, $"a smoothing radius of {Guard.Format(radius)} m gives a kernel that is not finite.");
         }
     }
 
     /// <summary>The smoothing radius h, m.</summary>
     public double Radius { get; }
 
-    /// <summary>poly6 at distance 0: 315 / (64 pi h^3), 1/m^3.</summary>
-    public double Peak => _poly6 * _h2 * _h2 * _h2;
+    /// <summary>W at distance 0: 15 / (pi h^3), 1/m^3.</summary>
+    public double Peak => _spiky * Radius * Radius * Radius;
 
-    /// <summary>poly6 at squared distance <paramref name="r2"/> (m^2), 1/m^3.</summary>
+    /// <summary>W at distance <paramref name="r"/> (m), 1/m^3.</summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
-    public double Density(double r2)
+    public double Density(double r)
     {
-        if (r2 >= _h2)
+        if (r >= Radius)
         {
             return 0.0;
         }
 
-        var d = _h2 - r2;
-        return _poly6 * d * d * d;
+        var d = Radius - r;
+        return _spiky * d * d * d;
     }
 
     /// <summary>
-    /// The spiky gradient's magnitude over the distance at distance <paramref name="r"/> (m): grad W = -factor * r_vec,
-    /// so factor = 45 / (pi h^6) (h - r)^2 / r, 1/m^5; 0 at r = 0 (no direction) and from h on.
+    /// The gradient's magnitude over the distance at distance <paramref name="r"/> (m): grad W = -factor * r_vec, so
+    /// factor = 45 / (pi h^6) (h - r)^2 / r, 1/m^5; 0 at r = 0 (no direction) and from h on.
     /// </summary>
     [MethodImpl(MethodImplOptions.AggressiveInlining)]
     public double GradientOverDistance(double r)
@@ -68,6 +72,6 @@ public readonly struct SphKernel
         }
 
         var d = Radius - r;
-        return _spiky * d * d / r;
+        return 3.0 * _spiky * d * d / r;
     }
 }

@@ -1,4 +1,5 @@
 using System;
+using ParticlePhysics.Contacts;
 using ParticlePhysics.Fluids;
 using Xunit;
 
@@ -27,6 +28,62 @@ public class PositionBasedFluidTests
         }
 
         Assert.True(fluid.PairCount > 13 * world.Count / 2, $"{fluid.PairCount} neighbour pairs for {world.Count} particles");
+    }
+
+    [Fact]
+    public void A_block_cut_from_the_walls_of_its_box_is_at_the_rest_density_against_them_corners_included()
+    {
+        // The block fills [0, 6 s]^3 against five planes (floor and four sides): every particle but those of the top
+        // layer, which has no fluid above, has its missing neighbours beyond the walls as ghosts, counted once where
+        // two or three walls meet.
+        var (world, fluid) = Block(Spacing, origin: new Vector3d(0.5 * Spacing, 0.5 * Spacing, 0.5 * Spacing));
+        fluid.Boundary = Box(6 * Spacing);
+        var before = world.Positions.ToArray();
+        Substep(world, fluid, 1.0 / 600, velocities: false);
+
+        var densities = fluid.Densities;
+        var particles = fluid.Particles;
+        for (var k = 0; k < fluid.Count; k++)
+        {
+            var top = world.GetPosition(particles[k]).Y > 5 * Spacing;
+            if (top)
+            {
+                Assert.True(densities[k] < 0.95 * 1000, $"a particle of the top layer has {densities[k]} kg/m^3");
+            }
+            else
+            {
+                Assert.Equal(1000.0, densities[k], 9);
+            }
+        }
+
+        var after = world.Positions.ToArray();
+        for (var k = 0; k < before.Length; k++)
+        {
+            Assert.Equal(before[k], after[k], 14);
+        }
+
+        Assert.True(fluid.WallCount > 0);
+    }
+
+    [Fact]
+    public void A_block_pressed_into_the_floor_is_pushed_back_out_of_it()
+    {
+        // A quarter of a spacing lower than its rest place, the bottom layer is a quarter of a spacing from the floor,
+        // not half: the floor's ghosts compress it, and the projection lifts the block, the floor taking the reaction.
+        var (world, fluid) = Block(Spacing, origin: new Vector3d(0.5 * Spacing, 0.25 * Spacing, 0.5 * Spacing));
+        var contacts = new ContactSet();
+        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(0, 1, 0)));
+        fluid.Boundary = contacts;
+        var before = world.TotalMomentum();
+        var lift = -Momentum(world);
+        Substep(world, fluid, 1.0 / 600, velocities: false);
+
+        lift += Momentum(world);
+        Assert.True(fluid.Densities[74] > 1000.0, $"the middle of the bottom layer is at {fluid.Densities[74]} kg/m^3 before the move");
+        Assert.True(lift.Y > 1e-6 * fluid.ParticleMass * Spacing, $"the block's sum of m dy is {lift.Y:G3} kg m");
+        Assert.Equal(0.0, lift.X, 15);
+        Assert.Equal(0.0, lift.Z, 15);
+        Assert.Equal(before, world.TotalMomentum());
     }
 
     [Fact]
@@ -93,19 +150,31 @@ public class PositionBasedFluidTests
         Assert.Equal(2, fluid.Count);
     }
 
-    // A 6 x 6 x 6 block at pitch `pitch` of particles of the fluid of spacing `spacing` (mass rho_0 s^3).
-    private static (ParticleWorld World, PositionBasedFluid Fluid) Block(double pitch, double? spacing = null)
+    // A 6 x 6 x 6 block at pitch `pitch` from `origin` of particles of the fluid of spacing `spacing` (mass rho_0 s^3).
+    private static (ParticleWorld World, PositionBasedFluid Fluid) Block(double pitch, double? spacing = null, Vector3d origin = default)
     {
         var world = new ParticleWorld();
         var fluid = new PositionBasedFluid(world, spacing ?? pitch, 1000);
         var indices = new int[216];
         for (var k = 0; k < indices.Length; k++)
         {
-            indices[k] = world.AddParticle(new Vector3d(pitch * (k % 6), pitch * (k / 6 % 6), pitch * (k / 36)), fluid.ParticleMass);
+            indices[k] = world.AddParticle(origin + new Vector3d(pitch * (k % 6), pitch * (k / 6 % 6), pitch * (k / 36)), fluid.ParticleMass);
         }
 
         fluid.Add(indices);
         return (world, fluid);
+    }
+
+    // A box of five planes (no lid) over [0, size] on x and z, the floor at y = 0.
+    private static ContactSet Box(double size)
+    {
+        var contacts = new ContactSet();
+        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(0, 1, 0)));
+        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(1, 0, 0)));
+        contacts.Add(new PlaneObstacle(new Vector3d(size, 0, 0), new Vector3d(-1, 0, 0)));
+        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(0, 0, 1)));
+        contacts.Add(new PlaneObstacle(new Vector3d(0, 0, size), new Vector3d(0, 0, -1)));
+        return contacts;
     }
 
     private static Vector3d Momentum(ParticleWorld world)
@@ -119,7 +188,7 @@ public class PositionBasedFluidTests
         return sum;
     }
 
-    // The largest rho / rho_0 - 1, summed over every pair with poly6 and normalised by the rest lattice's sum (the fluid's kappa), apart from the set.
+    // The largest rho / rho_0 - 1, summed over every pair with the kernel and normalised by the rest lattice's sum (the fluid's kappa), apart from the set.
     private static double MaxDensityError(ParticleWorld world, PositionBasedFluid fluid)
     {
         var max = 0.0;
@@ -131,7 +200,7 @@ public class PositionBasedFluidTests
             {
                 for (int x = -2; x <= 2; x++)
                 {
-                    rest += kernel.Density(fluid.Spacing * fluid.Spacing * ((x * x) + (y * y) + (z * z)));
+                    rest += kernel.Density(fluid.Spacing * Math.Sqrt((x * x) + (y * y) + (z * z)));
                 }
             }
         }
@@ -141,7 +210,7 @@ public class PositionBasedFluidTests
             var sum = 0.0;
             for (var j = 0; j < world.Count; j++)
             {
-                sum += kernel.Density((world.GetPosition(i) - world.GetPosition(j)).LengthSquared);
+                sum += kernel.Density((world.GetPosition(i) - world.GetPosition(j)).Length);
             }
 
             max = Math.Max(max, (sum / rest) - 1.0);
