@@ -27,6 +27,21 @@ internal struct CellBuckets
     /// <summary>The most cells per box for which the table is dense.</summary>
     public const int DenseFactor = 4;
 
+    /// <summary>The values <see cref="ForwardOffsets"/> writes: the cell itself and the 13 after it, 3 steps each.</summary>
+    public const int ForwardLength = 42;
+
+    // Cell coordinates are clamped to 21 bits each (+-1,048,574 cells) so that three pack into one long; clamping
+    // merges far cells, which costs time, never a pair (the distance or overlap test decides).
+    private const long CoordinateLimit = (1L << 20) - 2;
+
+    // The cell itself, then the 13 neighbours that come after it in lexicographic order, as steps along the slowest,
+    // the middle and the fastest axis of the table's numbering (Axis).
+    private static readonly int[] _forward =
+    {
+        0, 0, 0, 0, 0, 1, 0, 1, -1, 0, 1, 0, 0, 1, 1, 1, -1, -1, 1, -1, 0, 1, -1, 1, 1, 0, -1, 1, 0, 0, 1, 0, 1, 1, 1, -1,
+        1, 1, 0, 1, 1, 1,
+    };
+
     private long _x0, _y0, _z0, _nx, _ny, _nz, _sx, _sy, _sz;
     private int _mask, _fast, _middle, _slow;
 
@@ -98,6 +113,45 @@ internal struct CellBuckets
         }
 
         return (int)(((long)dx * _sx) + ((long)dy * _sy) + ((long)dz * _sz));
+    }
+
+    /// <summary>
+    /// Writes into <paramref name="offsets"/> (<see cref="ForwardLength"/> values) the cell itself and the 13 cells after
+    /// it as (dx, dy, dz) steps in the last <see cref="Fit"/>'s numbering, so that a dense table's cells meet their
+    /// neighbours only after them (a hashed table keeps x, y, z): visiting these from every cell reads each pair of
+    /// neighbouring cells once.
+    /// </summary>
+    public readonly void ForwardOffsets(int[] offsets)
+    {
+        for (var k = 0; k < 14; k++)
+        {
+            for (var rank = 0; rank < 3; rank++)
+            {
+                offsets[(3 * k) + Axis(rank)] = _forward[(3 * k) + 2 - rank];
+            }
+        }
+    }
+
+    /// <summary>The cell coordinate of a position over the cell size, floor(scaled), clamped to +-(2^20 - 2) (NaN too).</summary>
+    public static long Coordinate(double scaled)
+    {
+        var floor = Math.Floor(scaled);
+        return floor > CoordinateLimit ? CoordinateLimit : floor >= -CoordinateLimit ? (long)floor : -CoordinateLimit;
+    }
+
+    /// <summary>Cell (x, y, z), each within +-2^20, packed into one long (21 bits each).</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static long Pack(long x, long y, long z) =>
+        ((x + (1L << 20)) << 42) | ((y + (1L << 20)) << 21) | (z + (1L << 20));
+
+    /// <summary>The cell <see cref="Pack"/> packed.</summary>
+    [MethodImpl(MethodImplOptions.AggressiveInlining)]
+    public static void Unpack(long cell, out long x, out long y, out long z)
+    {
+        const long mask = (1L << 21) - 1;
+        x = ((cell >> 42) & mask) - (1L << 20);
+        y = ((cell >> 21) & mask) - (1L << 20);
+        z = (cell & mask) - (1L << 20);
     }
 
     private static void Order(Span<long> n, Span<int> axes, int a, int b)

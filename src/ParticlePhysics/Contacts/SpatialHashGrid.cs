@@ -41,18 +41,7 @@ public sealed class SpatialHashGrid
 
     private const int LargeFactor = 4;
 
-    // Cell coordinates are clamped to 21 bits each (+-1,048,574 cells) so that three pack into one long; clamping
-    // merges far cells, which costs time, never a pair (the overlap test decides).
-    private const long CoordinateLimit = (1L << 20) - 2;
-
-    // The cell itself, then the 13 neighbours that come after it in lexicographic order, as steps along the slowest,
-    // the middle and the fastest axis of the table's numbering (CellBuckets.Axis).
-    private static readonly int[] _forward =
-    {
-        0, 0, 0, 0, 0, 1, 0, 1, -1, 0, 1, 0, 0, 1, 1, 1, -1, -1, 1, -1, 0, 1, -1, 1, 1, 0, -1, 1, 0, 0, 1, 0, 1, 1, 1, -1,
-        1, 1, 0, 1, 1, 1,
-    };
-    private readonly int[] _offsets = new int[42]; // _forward as (dx, dy, dz) for the last build's numbering
+    private readonly int[] _offsets = new int[CellBuckets.ForwardLength]; // the last build's forward cells (CellBuckets.ForwardOffsets)
     private double[] _slotMin = Array.Empty<double>();
     private double[] _slotMax = Array.Empty<double>();
     private long[] _slotCell = Array.Empty<long>();
@@ -138,7 +127,7 @@ public sealed class SpatialHashGrid
                 continue; // its pairs with moving boxes are found from them
             }
 
-            UnpackCell(_slotCell[slot], out var cx, out var cy, out var cz);
+            CellBuckets.Unpack(_slotCell[slot], out var cx, out var cy, out var cz);
             var offsets = still is null ? 14 : 27;
             for (var offset = 0; offset < offsets; offset++)
             {
@@ -148,7 +137,7 @@ public sealed class SpatialHashGrid
                 var sign = forward ? 1 : -1;
                 var k = forward ? offset : offset - 13;
                 long x = cx + (sign * _offsets[3 * k]), y = cy + (sign * _offsets[(3 * k) + 1]), z = cz + (sign * _offsets[(3 * k) + 2]);
-                var cell = PackCell(x, y, z);
+                var cell = CellBuckets.Pack(x, y, z);
                 var bucket = _buckets.Of(x, y, z, cell);
                 if (bucket < 0)
                 {
@@ -241,26 +230,18 @@ public sealed class SpatialHashGrid
             }
 
             var o = 3 * i;
-            var x = CellCoordinate(0.5 * (min[o] + max[o]) * inverse);
-            var y = CellCoordinate(0.5 * (min[o + 1] + max[o + 1]) * inverse);
-            var z = CellCoordinate(0.5 * (min[o + 2] + max[o + 2]) * inverse);
+            var x = CellBuckets.Coordinate(0.5 * (min[o] + max[o]) * inverse);
+            var y = CellBuckets.Coordinate(0.5 * (min[o + 1] + max[o + 1]) * inverse);
+            var z = CellBuckets.Coordinate(0.5 * (min[o + 2] + max[o + 2]) * inverse);
             (loX, loY, loZ) = (Math.Min(loX, x), Math.Min(loY, y), Math.Min(loZ, z));
             (hiX, hiY, hiZ) = (Math.Max(hiX, x), Math.Max(hiY, y), Math.Max(hiZ, z));
-            _cellOf[i] = PackCell(x, y, z);
+            _cellOf[i] = CellBuckets.Pack(x, y, z);
             _bucketOf[i] = 0;
             _ordinaryCount++;
         }
 
         _buckets.Fit(loX, loY, loZ, hiX, hiY, hiZ, _ordinaryCount);
-        for (var k = 0; k < 14; k++)
-        {
-            // The forward half in the numbering's order, so that a dense table's cells meet their neighbours only
-            // after them (a hashed table keeps x, y, z).
-            for (var rank = 0; rank < 3; rank++)
-            {
-                _offsets[(3 * k) + _buckets.Axis(rank)] = _forward[(3 * k) + 2 - rank];
-            }
-        }
+        _buckets.ForwardOffsets(_offsets);
 
         var buckets = _buckets.Count;
         Array.Clear(_bucketStart, 0, buckets + 1);
@@ -268,7 +249,7 @@ public sealed class SpatialHashGrid
         {
             if (_bucketOf[i] >= 0)
             {
-                UnpackCell(_cellOf[i], out var x, out var y, out var z);
+                CellBuckets.Unpack(_cellOf[i], out var x, out var y, out var z);
                 var bucket = _buckets.Of(x, y, z, _cellOf[i]);
                 _bucketOf[i] = bucket;
                 _bucketStart[bucket + 1]++;
@@ -346,22 +327,5 @@ public sealed class SpatialHashGrid
     {
         var o = 3 * i;
         return Math.Max(max[o] - min[o], Math.Max(max[o + 1] - min[o + 1], max[o + 2] - min[o + 2]));
-    }
-
-    private static long CellCoordinate(double scaled)
-    {
-        var floor = Math.Floor(scaled);
-        return floor < -CoordinateLimit ? -CoordinateLimit : floor > CoordinateLimit ? CoordinateLimit : (long)floor;
-    }
-
-    private static long PackCell(long x, long y, long z) =>
-        ((x + (1L << 20)) << 42) | ((y + (1L << 20)) << 21) | (z + (1L << 20));
-
-    private static void UnpackCell(long cell, out long x, out long y, out long z)
-    {
-        const long mask = (1L << 21) - 1;
-        x = ((cell >> 42) & mask) - (1L << 20);
-        y = ((cell >> 21) & mask) - (1L << 20);
-        z = (cell & mask) - (1L << 20);
     }
 }

@@ -18,16 +18,7 @@ namespace ParticlePhysics.Fluids;
 /// </remarks>
 internal sealed class FluidNeighbours
 {
-    // The cell itself, then the 13 cells after it in the lexicographic order (slowest, middle, fastest axis).
-    private static readonly int[] _forward =
-    {
-        0, 0, 0, 0, 0, 1, 0, 1, -1, 0, 1, 0, 0, 1, 1, 1, -1, -1, 1, -1, 0, 1, -1, 1, 1, 0, -1, 1, 0, 0, 1, 0, 1, 1, 1, -1,
-        1, 1, 0, 1, 1, 1,
-    };
-
-    private const long CoordinateLimit = (1L << 20) - 2;
-
-    private readonly int[] _offsets = new int[42];
+    private readonly int[] _offsets = new int[CellBuckets.ForwardLength];
     private CellBuckets _buckets;
     private long[] _cellOf = Array.Empty<long>(); // per point
     private int[] _bucketOf = Array.Empty<int>(); // per point
@@ -58,11 +49,11 @@ internal sealed class FluidNeighbours
         {
             var i = _pointOf[slot];
             double xi = _slotX[3 * slot], yi = _slotX[(3 * slot) + 1], zi = _slotX[(3 * slot) + 2];
-            Unpack(_slotCell[slot], out var cx, out var cy, out var cz);
+            CellBuckets.Unpack(_slotCell[slot], out var cx, out var cy, out var cz);
             for (var k = 0; k < 14; k++)
             {
                 long ax = cx + _offsets[3 * k], ay = cy + _offsets[(3 * k) + 1], az = cz + _offsets[(3 * k) + 2];
-                var cell = Pack(ax, ay, az);
+                var cell = CellBuckets.Pack(ax, ay, az);
                 var bucket = _buckets.Of(ax, ay, az, cell);
                 if (bucket < 0)
                 {
@@ -106,26 +97,22 @@ internal sealed class FluidNeighbours
         long hiX = long.MinValue, hiY = long.MinValue, hiZ = long.MinValue;
         for (var i = 0; i < count; i++)
         {
-            long cx = Coordinate(x[3 * i] * inverse), cy = Coordinate(x[(3 * i) + 1] * inverse), cz = Coordinate(x[(3 * i) + 2] * inverse);
+            var cx = CellBuckets.Coordinate(x[3 * i] * inverse);
+            var cy = CellBuckets.Coordinate(x[(3 * i) + 1] * inverse);
+            var cz = CellBuckets.Coordinate(x[(3 * i) + 2] * inverse);
             (loX, loY, loZ) = (Math.Min(loX, cx), Math.Min(loY, cy), Math.Min(loZ, cz));
             (hiX, hiY, hiZ) = (Math.Max(hiX, cx), Math.Max(hiY, cy), Math.Max(hiZ, cz));
-            _cellOf[i] = Pack(cx, cy, cz);
+            _cellOf[i] = CellBuckets.Pack(cx, cy, cz);
         }
 
         _buckets.Fit(loX, loY, loZ, hiX, hiY, hiZ, count);
-        for (var k = 0; k < 14; k++)
-        {
-            for (var rank = 0; rank < 3; rank++)
-            {
-                _offsets[(3 * k) + _buckets.Axis(rank)] = _forward[(3 * k) + 2 - rank];
-            }
-        }
+        _buckets.ForwardOffsets(_offsets);
 
         var buckets = _buckets.Count;
         Array.Clear(_bucketStart, 0, buckets + 1);
         for (var i = 0; i < count; i++)
         {
-            Unpack(_cellOf[i], out var cx, out var cy, out var cz);
+            CellBuckets.Unpack(_cellOf[i], out var cx, out var cy, out var cz);
             var bucket = _buckets.Of(cx, cy, cz, _cellOf[i]);
             _bucketOf[i] = bucket;
             _bucketStart[bucket + 1]++;
@@ -166,22 +153,5 @@ internal sealed class FluidNeighbours
         _first[_pairs] = i;
         _second[_pairs] = j;
         _pairs++;
-    }
-
-    private static long Coordinate(double scaled)
-    {
-        var floor = Math.Floor(scaled);
-        return floor > CoordinateLimit ? CoordinateLimit : floor >= -CoordinateLimit ? (long)floor : -CoordinateLimit; // NaN too
-    }
-
-    private static long Pack(long x, long y, long z) =>
-        ((x + (1L << 20)) << 42) | ((y + (1L << 20)) << 21) | (z + (1L << 20));
-
-    private static void Unpack(long cell, out long x, out long y, out long z)
-    {
-        const long mask = (1L << 21) - 1;
-        x = ((cell >> 42) & mask) - (1L << 20);
-        y = ((cell >> 21) & mask) - (1L << 20);
-        z = (cell & mask) - (1L << 20);
     }
 }

@@ -12,7 +12,7 @@ namespace ParticlePhysics.Fluids;
 /// <remarks>
 /// <para>
 /// A particle next to a wall misses the neighbours beyond it; without this term it is pulled in until its own
-/// estimate reaches rho_0, and a 10-particle-wide column settles 13 % low. A ghost at o from the particle (at depth
+/// estimate reaches rho_0, and a column settles low by the layers next to its walls. A ghost at o from the particle (at depth
 /// z = d + s / 2 + l s behind the wall, l = 0, 1, ..., and lateral offset (i t + j b) s in the wall's frame) counts as a
 /// fluid neighbour does: m W(|o|) in the density sum and the spiky gradient m f(|o|) o in the gradient sum. As the
 /// particle moves towards the wall the lattice comes with the wall, so the density grows as it does when two fluid
@@ -29,7 +29,8 @@ namespace ParticlePhysics.Fluids;
 /// </remarks>
 internal sealed class FluidWall
 {
-    private const int FrameSize = 9; // n, t, b
+    /// <summary>The values a wall's frame takes in <see cref="Add"/>'s frames: n, then t and b along the wall.</summary>
+    public const int FrameLength = 9;
 
     private readonly SphKernel _kernel;
     private readonly double _spacing;
@@ -50,9 +51,6 @@ internal sealed class FluidWall
     /// </summary>
     public double Reach => _kernel.Radius + (0.5 * _spacing);
 
-    /// <summary>The values a wall's frame takes in <see cref="Add"/>'s frames: n, then t and b along the wall.</summary>
-    public static int FrameLength => FrameSize;
-
     /// <summary>
     /// Adds to <paramref name="gradient"/> (3 values from <paramref name="at"/>) the walls' share of
     /// sum_b m_b grad_a W_ab, and returns their share of sum_b m_b W_ab (kg/m^3, before kappa), for a particle at
@@ -68,7 +66,7 @@ internal sealed class FluidWall
         double density = 0.0, gx = 0.0, gy = 0.0, gz = 0.0;
         for (var a = first; a < first + count; a++)
         {
-            var f = FrameSize * a;
+            var f = FrameLength * a;
             double nx = frames[f], ny = frames[f + 1], nz = frames[f + 2];
             double tx = frames[f + 3], ty = frames[f + 4], tz = frames[f + 5];
             double bx = frames[f + 6], by = frames[f + 7], bz = frames[f + 8];
@@ -90,7 +88,7 @@ internal sealed class FluidWall
                         var weight = 1.0;
                         for (var b = first; b < a && weight > 0.0; b++)
                         {
-                            var e = FrameSize * b;
+                            var e = FrameLength * b;
                             var phi = distances[b] + (frames[e] * ox) + (frames[e + 1] * oy) + (frames[e + 2] * oz);
                             var depth = 0.5 - (phi * inverse);
                             if (depth > 0.0)

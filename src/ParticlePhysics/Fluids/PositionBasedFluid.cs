@@ -22,8 +22,8 @@ namespace ParticlePhysics.Fluids;
 /// </para>
 /// <para>
 /// The constraint is one-sided, C_i = max(rho_i / rho_0 - 1, 0): a particle with too few neighbours (at the free
-/// surface, in a splash) is not pulled towards others. For particles of any masses the projection of every constraint moves particle a by
-/// dx_a = w_a (kappa / rho_0) sum_b (lambda_a m_b + lambda_b m_a + s_corr (m_a + m_b) / 2) grad_a W_ab,
+/// surface, in a splash) is not pulled towards others. For particles of any masses the projection of every
+/// constraint moves particle a by dx_a = w_a (kappa / rho_0) sum_b (lambda_a m_b + lambda_b m_a + s_corr (m_a + m_b) / 2) grad_a W_ab,
 /// lambda_a = -C_a / (sum_k w_k |grad_k C_a|^2 + epsilon D_0), the pair's weight symmetric so that each pair's
 /// moves m_a dx_a + m_b dx_b sum to 0: the projection keeps the momentum. For equal masses this is the paper's
 /// dx_i = (1 / rho_0) sum_j (lambda_i + lambda_j + s_corr) grad W_ij. D_0 is the denominator of a particle of the
@@ -35,10 +35,9 @@ namespace ParticlePhysics.Fluids;
 /// Walls, bodies and cloth meet the fluid through the contact stage (a <see cref="ContactSet"/> added after this set),
 /// by the particles' radii; the obstacles of the contact set given as <see cref="Boundary"/> also count in the density,
 /// so that the fluid is not drawn into them. Pinned fluid particles count in the density and do not move, so they
-/// make walls too. Give
-/// the contact set <see cref="PairFilter"/>, so that two fluid particles leave each other to this set. Neighbours are
-/// found once per substep in cells of side h, in the contact stage's cell table (<see cref="CellBuckets"/>); nothing is allocated per step
-/// once the buffers have grown to the fluid. Under a force-based integrator the end of the step is projected once, and
+/// make walls too. Give the contact set <see cref="PairFilter"/>, so that two fluid particles leave each other to
+/// this set. Neighbours are found once per substep in cells of side h, in the contact stage's cell table
+/// (<see cref="CellBuckets"/>); nothing is allocated per step once the buffers have grown to the fluid. Under a force-based integrator the end of the step is projected once, and
 /// each correction dx changes its particle's velocity by dx / dt.
 /// </para>
 /// </remarks>

@@ -1,8 +1,5 @@
 using System;
 using System.Collections.Generic;
-using ParticlePhysics.Contacts;
-using ParticlePhysics.Fluids;
-using ParticlePhysics.Forces;
 using ParticlePhysics.Integrators;
 using Xunit;
 using Xunit.Abstractions;
@@ -45,8 +42,8 @@ public class DamBreakTests
             worstLate = _measuredT[k] >= 2.32 ? Math.Max(worstLate, error) : worstLate;
         }
 
-        // The target is 10 % from T = 1.4 on. The simulated front leads by about 0.25 in Z from the start, a
-        // lead that grows a little as the spacing is refined (a / 8, a / 16, a / 32): within 10 % from T = 2.32 on.
+        // The target is 10 % from T = 1.4 on, not met yet: the simulated front leads by a nearly constant step in Z,
+        // with the measured slope, and refining the spacing does not close it. What holds is asserted.
         Assert.True(worstLate < 0.10, $"the front is {worstLate:P1} from the measurements from T = 2.32 on");
         Assert.True(worst < 0.16, $"the front is {worst:P1} from the measurements from T = 1.43 on");
         for (var k = 1; k < fronts.Count; k++)
@@ -66,19 +63,8 @@ public class DamBreakTests
     {
         var s = A / PerWidth;
         var thickness = Thickness * s;
-        var world = new ParticleWorld();
-        world.AddForce(Gravity.Down(9.81));
-        var fluid = new PositionBasedFluid(world, s, 1000);
-        fluid.AddBox(Vector3d.Zero, new Vector3d(A, 2 * A, thickness));
-        var contacts = new ContactSet { PairFilter = fluid.PairFilter };
-        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(0, 1, 0)));
-        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(1, 0, 0)));
-        contacts.Add(new PlaneObstacle(new Vector3d(6 * A, 0, 0), new Vector3d(-1, 0, 0)));
-        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(0, 0, 1)));
-        contacts.Add(new PlaneObstacle(new Vector3d(0, 0, thickness), new Vector3d(0, 0, -1)));
-        fluid.Boundary = contacts;
-        world.AddConstraints(fluid);
-        world.AddConstraints(contacts);
+        var sides = FluidTank.Sides(6 * A, thickness);
+        var (world, _) = FluidTank.Fill(s, Vector3d.Zero, new Vector3d(A, 2 * A, thickness), FluidTank.Floor(), sides[0], sides[1], sides[2], sides[3]);
         var masses = world.Masses.ToArray();
 
         var xpbd = new Xpbd(40);

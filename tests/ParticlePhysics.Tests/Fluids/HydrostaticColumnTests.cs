@@ -1,7 +1,5 @@
 using System;
 using ParticlePhysics.Contacts;
-using ParticlePhysics.Fluids;
-using ParticlePhysics.Forces;
 using ParticlePhysics.Integrators;
 using Xunit;
 using Xunit.Abstractions;
@@ -26,20 +24,10 @@ public class HydrostaticColumnTests
     [Trait("Category", "Long")]
     public void A_column_of_water_in_a_closed_box_stays_at_its_height_and_density_and_comes_to_rest()
     {
-        var world = new ParticleWorld();
-        world.AddForce(Gravity.Down(9.81));
-        var fluid = new PositionBasedFluid(world, Spacing, 1000);
-        fluid.AddBox(Vector3d.Zero, new Vector3d(Width, Depth, Width));
-        var contacts = new ContactSet { PairFilter = fluid.PairFilter };
-        contacts.Add(new BoxObstacle(new Vector3d(0.5 * Width, -0.05, 0.5 * Width), new Vector3d(0.1, 0.05, 0.1))); // floor
-        contacts.Add(new BoxObstacle(new Vector3d(0.5 * Width, 0.45, 0.5 * Width), new Vector3d(0.1, 0.05, 0.1))); // lid
-        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(1, 0, 0)));
-        contacts.Add(new PlaneObstacle(new Vector3d(Width, 0, 0), new Vector3d(-1, 0, 0)));
-        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(0, 0, 1)));
-        contacts.Add(new PlaneObstacle(new Vector3d(0, 0, Width), new Vector3d(0, 0, -1)));
-        fluid.Boundary = contacts;
-        world.AddConstraints(fluid);
-        world.AddConstraints(contacts);
+        var floor = new BoxObstacle(new Vector3d(0.5 * Width, -0.05, 0.5 * Width), new Vector3d(0.1, 0.05, 0.1));
+        var lid = new BoxObstacle(new Vector3d(0.5 * Width, 0.45, 0.5 * Width), new Vector3d(0.1, 0.05, 0.1));
+        var sides = FluidTank.Sides(Width, Width);
+        var (world, fluid) = FluidTank.Fill(Spacing, Vector3d.Zero, new Vector3d(Width, Depth, Width), floor, lid, sides[0], sides[1], sides[2], sides[3]);
         var top = Top(world);
         var mass = 0.0;
         for (var i = 0; i < world.Count; i++)

@@ -72,7 +72,7 @@ public class PositionBasedFluidTests
         // not half: the floor's ghosts compress it, and the projection lifts the block, the floor taking the reaction.
         var (world, fluid) = Block(Spacing, origin: new Vector3d(0.5 * Spacing, 0.25 * Spacing, 0.5 * Spacing));
         var contacts = new ContactSet();
-        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(0, 1, 0)));
+        contacts.Add(FluidTank.Floor());
         fluid.Boundary = contacts;
         var before = world.TotalMomentum();
         var lift = -Momentum(world);
@@ -203,11 +203,12 @@ public class PositionBasedFluidTests
     private static ContactSet Box(double size)
     {
         var contacts = new ContactSet();
-        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(0, 1, 0)));
-        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(1, 0, 0)));
-        contacts.Add(new PlaneObstacle(new Vector3d(size, 0, 0), new Vector3d(-1, 0, 0)));
-        contacts.Add(new PlaneObstacle(Vector3d.Zero, new Vector3d(0, 0, 1)));
-        contacts.Add(new PlaneObstacle(new Vector3d(0, 0, size), new Vector3d(0, 0, -1)));
+        contacts.Add(FluidTank.Floor());
+        foreach (var side in FluidTank.Sides(size, size))
+        {
+            contacts.Add(side);
+        }
+
         return contacts;
     }
 
