@@ -117,6 +117,11 @@ public sealed class Scene
             text.AppendLine($"rigid bodies: {Count("rigid bodies")}, soft bodies: {Count("soft bodies")}, grains: {Count("grains")}");
         }
 
+        if (counts.ContainsKey("fluid particles"))
+        {
+            text.AppendLine($"fluid particles: {Count("fluid particles")}");
+        }
+
         text.AppendLine(_colliders.Count == 0
             ? "colliders: none"
             : "colliders: " + string.Join(", ", _colliders.GroupBy(c => c.Kind).Select(g => Invariant($"{g.Count()} {g.Key}"))));

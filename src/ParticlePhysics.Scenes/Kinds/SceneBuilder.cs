@@ -4,6 +4,7 @@ using ParticlePhysics.Aerodynamics;
 using ParticlePhysics.Bodies;
 using ParticlePhysics.Constraints;
 using ParticlePhysics.Contacts;
+using ParticlePhysics.Fluids;
 using ParticlePhysics.Forces;
 
 namespace ParticlePhysics.Scenes.Kinds;
@@ -34,6 +35,7 @@ internal sealed class SceneBuilder
     private readonly List<(int First, int Count, double Friction, double Restitution)> _solids = new();
     private readonly List<(int First, int Count, double Friction, double RollingFriction)> _grains = new();
     private ShapeMatching? _bodies;
+    private readonly List<(FluidParameters Parameters, List<int> Particles)> _fluids = new();
 
     public SceneBuilder(ParticleWorld world, string file, SceneSettings settings)
     {
@@ -103,6 +105,26 @@ internal sealed class SceneBuilder
     {
         AddSolid(first, count, friction, double.NaN);
         _grains.Add((first, count, friction, rollingFriction));
+    }
+
+    /// <summary>
+    /// Notes a block of fluid: <paramref name="count"/> particles from <paramref name="first"/>. Blocks with the same
+    /// parameters become one <see cref="PositionBasedFluid"/>, so that two blocks of the same water merge; fluids that
+    /// differ are separate sets, which meet as spheres.
+    /// </summary>
+    public void AddFluid(FluidParameters parameters, int first, int count)
+    {
+        var index = _fluids.FindIndex(f => f.Parameters.Equals(parameters));
+        if (index < 0)
+        {
+            _fluids.Add((parameters, new List<int>()));
+            index = _fluids.Count - 1;
+        }
+
+        for (var i = 0; i < count; i++)
+        {
+            _fluids[index].Particles.Add(first + i);
+        }
     }
 
     /// <summary>Notes a cloth's mesh edge: its two particles do not collide with each other.</summary>
@@ -196,6 +218,19 @@ internal sealed class SceneBuilder
             world.AddConstraints(_bodies);
         }
 
+        var fluids = new List<PositionBasedFluid>();
+        foreach (var (parameters, particles) in _fluids)
+        {
+            var fluid = new PositionBasedFluid(world, parameters.Spacing, parameters.Density)
+            {
+                Viscosity = parameters.Viscosity,
+                Vorticity = parameters.Vorticity,
+            };
+            fluid.Add(particles.ToArray());
+            world.AddConstraints(fluid);
+            fluids.Add(fluid);
+        }
+
         if (_obstacles.Count > 0 || settings.ParticleCollisions || _solids.Count > 0)
         {
             var contacts = new ContactSet();
@@ -225,10 +260,45 @@ internal sealed class SceneBuilder
                 contacts.SetGranular(first, count, friction, rolling);
             }
 
+            // The fluids count the colliders in their densities, and leave pairs of their own particles to themselves.
+            foreach (var fluid in fluids)
+            {
+                fluid.Boundary = contacts;
+                fluid.PairFilter.Next = contacts.PairFilter;
+                contacts.PairFilter = fluid.PairFilter;
+            }
+
             world.AddConstraints(contacts);
         }
 
         return world;
+    }
+
+    /// <summary>What makes two scene fluids one: their spacing (m), rest density (kg/m^3), XSPH c and vorticity epsilon.</summary>
+    public struct FluidParameters : IEquatable<FluidParameters>
+    {
+        public FluidParameters(double spacing, double density, double viscosity, double vorticity)
+        {
+            Spacing = spacing;
+            Density = density;
+            Viscosity = viscosity;
+            Vorticity = vorticity;
+        }
+
+        public double Spacing { get; }
+
+        public double Density { get; }
+
+        public double Viscosity { get; }
+
+        public double Vorticity { get; }
+
+        public bool Equals(FluidParameters other)
+            => Spacing.Equals(other.Spacing) && Density.Equals(other.Density) && Viscosity.Equals(other.Viscosity) && Vorticity.Equals(other.Vorticity);
+
+        public override bool Equals(object? obj) => obj is FluidParameters other && Equals(other);
+
+        public override int GetHashCode() => HashCode.Combine(Spacing, Density, Viscosity, Vorticity);
     }
 
     // Which pairs of particles collide: not two of one body, not two joined by a spring, rod or mesh edge, and, without

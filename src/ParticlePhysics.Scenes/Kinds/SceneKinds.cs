@@ -37,7 +37,7 @@ internal sealed class SceneKinds
         kinds.Add(SolidKind.Rigid);
         kinds.Add(SolidKind.Soft);
         kinds.Add(new GranularKind());
-        kinds.Add(NotBuiltYet.Object("fluid", "fluids"));
+        kinds.Add(new FluidKind());
 
         kinds.Add(new PlaneKind());
         kinds.Add(new SphereKind());
