@@ -110,7 +110,7 @@ internal sealed class SceneBuilder
     /// <summary>
     /// Notes a block of fluid: <paramref name="count"/> particles from <paramref name="first"/>. Blocks with the same
     /// parameters become one <see cref="PositionBasedFluid"/>, so that two blocks of the same water merge; fluids that
-    /// differ are separate sets, which meet as spheres.
+    /// differ are separate sets, which meet only as spheres and only with <c>particleCollisions</c>.
     /// </summary>
     public void AddFluid(FluidParameters parameters, int first, int count)
     {
