@@ -70,13 +70,7 @@ public class FluidSceneTests
     {
         var scene = Scene.Parse("{ \"objects\": [{ \"type\": \"fluid\", \"box\": { \"min\": [0, 0, 0], \"max\": [0.08, 0.06, 0.04] }, \"spacing\": 0.01 }], " + Tank + " }");
         var fromScene = scene.Build();
-        var walls = new[] { FluidTank.Floor() }.Concat(new Obstacle[]
-        {
-            new PlaneObstacle(Vector3d.Zero, new Vector3d(1, 0, 0)),
-            new PlaneObstacle(new Vector3d(0.08, 0, 0), new Vector3d(-1, 0, 0)),
-            new PlaneObstacle(Vector3d.Zero, new Vector3d(0, 0, 1)),
-            new PlaneObstacle(new Vector3d(0, 0, 0.04), new Vector3d(0, 0, -1)),
-        }).ToArray();
+        var walls = new[] { FluidTank.Floor() }.Concat(FluidTank.Sides(0.08, 0.04)).ToArray();
         var (byHand, fluid) = FluidTank.Fill(0.01, Vector3d.Zero, new Vector3d(0.08, 0.06, 0.04), walls);
         Assert.Equal(8 * 6 * 4, byHand.Count);
         Assert.Equal(byHand.Count, fromScene.Count);
